@@ -1,0 +1,132 @@
+//! The `capmesh` command line: check, param (and more as the pipeline grows).
+
+mod cli_progress;
+
+use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::io;
+use capmesh::mesh;
+use clap::{Parser, Subcommand};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "capmesh", version, about = "Adaptive area-preserving parameterization onto a spherical cap, and remeshing through it")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+    /// No progress bar.
+    #[arg(long, global = true)]
+    quiet: bool,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Check a mesh: counts, boundary loops, components, Euler characteristic, and whether it
+    /// is an open disk or a closed genus-0 surface. Exits non-zero otherwise.
+    Check {
+        /// Mesh file (.obj, .ply, .off, .stl, optionally .gz).
+        input: PathBuf,
+        /// Print the summary as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Parameterize a surface onto the adaptive spherical cap (or a fixed baseline domain).
+    Param {
+        /// Input mesh.
+        input: PathBuf,
+        /// Output mesh: the input's connectivity with vertices on the cap.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Domain: adaptive (default), disk, hemisphere, sphere or radius=R.
+        #[arg(long, default_value = "adaptive")]
+        domain: Domain,
+        /// Write a JSON report here.
+        #[arg(long)]
+        report: Option<PathBuf>,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(msg) => {
+            eprintln!("error: {msg}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn read(path: &Path) -> Result<capmesh::TriMesh, String> {
+    io::read_mesh(path).map_err(|e| e.to_string())
+}
+
+fn refuse_overwrite(input: &Path, output: &Path) -> Result<(), String> {
+    if io::same_file(input, output) {
+        return Err(format!("refusing to overwrite the input file {}; choose another output path", input.display()));
+    }
+    Ok(())
+}
+
+fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(), String> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
+    std::fs::write(path, text + "\n").map_err(|e| format!("cannot write report {}: {e}", path.display()))
+}
+
+fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        Command::Check { input, json } => {
+            let m = read(&input)?;
+            let summary = mesh::inspect(&m).map_err(|e| format!("{}: {e}", input.display()))?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?);
+            } else {
+                println!("file                 {}", input.display());
+                println!("vertices             {}", summary.n_vertices);
+                println!("faces                {}", summary.n_faces);
+                println!("edges                {}", summary.n_edges);
+                println!("boundary loops       {}", summary.boundary_loops);
+                println!("components           {}", summary.n_components);
+                println!("Euler characteristic {}", summary.euler_characteristic);
+                if let Some(g) = summary.genus {
+                    println!("genus                {g}");
+                }
+                println!("zero-area faces      {}", summary.zero_area_faces);
+                println!("coincident vertices  {}", summary.coincident_vertex_pairs);
+            }
+            // The full validation names why the surface cannot be mapped.
+            mesh::validate(&m).map_err(|e| format!("{}: {e}", input.display()))?;
+            if !json {
+                if let Some(kind) = summary.kind {
+                    println!("surface              {kind}");
+                }
+            }
+            Ok(())
+        }
+        Command::Param { input, output, domain, report } => {
+            refuse_overwrite(&input, &output)?;
+            let m = read(&input)?;
+            let bar = cli_progress::Bar::new(cli.quiet);
+            let options = ParamOptions::default().with_domain(domain);
+            let map = parameterize(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
+            bar.finish();
+            io::write_mesh(&output, &map.cap_mesh(&m)).map_err(|e| e.to_string())?;
+            let r = &map.report;
+            println!(
+                "{}: {} onto {}: Z* = {}, mean |d_area| = {:.4}, mean |d_angle| = {:.4} rad, flipped faces = {}, {:.2} s",
+                input.display(),
+                r.kind,
+                r.domain,
+                r.z_star.map_or("-".to_string(), |z| format!("{z:.4}")),
+                r.area_distortion.mean_abs,
+                r.angle_distortion.mean_abs,
+                r.flipped_faces,
+                r.seconds
+            );
+            if let Some(path) = report {
+                write_json(&path, r)?;
+            }
+            Ok(())
+        }
+    }
+}

@@ -1,0 +1,14 @@
+//! The cap: stereographic projection, the radius search and the whole parameterization
+//! (paper Sec. 3.1.2-3.1.3 and 3.2).
+
+pub mod brent;
+pub mod domain;
+pub mod parameterize;
+pub mod planar_transport;
+pub mod regularize;
+pub mod stereographic;
+pub mod untangle;
+
+pub use domain::Domain;
+pub use parameterize::{parameterize, CapMap, ParamOptions, ParamReport, RadiusSample};
+pub use stereographic::{inverse_stereographic, radius_of_z_star, stereographic, z_star_of_radius};

@@ -1,0 +1,277 @@
+//! The adaptive area-preserving parameterization `f = phi^-1 o h_r* o r* g` (paper Eq. 14) and
+//! its fixed-domain baselines.
+//!
+//! Open disks (Sec. 3.1): disk conformal map `g`, then for each radius `r` the transport map
+//! `h_r` on the disk of radius `r` with the stereographic density; `r*` minimises the
+//! area-normalised mean of `|mu|^2` of `(h_r o r g)^-1` (Eq. 12) by Brent's method over `Z*`
+//! in `[-0.995, 0.995]`; then the inverse stereographic projection.
+
+use super::brent;
+use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
+use super::planar_transport::PlanarTransport;
+use super::untangle::{untangle, UntangleReport};
+use super::stereographic::{inverse_stereographic, radius_of_z_star, z_star_of_radius};
+use crate::error::Error;
+use crate::flatten::closed::{composite_disk_map, flatten_closed, ClosedFlattenOptions, ClosedFlattenReport};
+use crate::flatten::puncture::Puncture;
+use crate::flatten::{disk_conformal_map, DiskConformalOptions, DiskConformalReport};
+use crate::mesh::geometry::{signed_area_2d, vertex_areas};
+use crate::mesh::{repair, validate, SurfaceKind, TriMesh};
+use crate::linalg::cotangent_weights;
+use crate::metrics::{angle_distortion, area_distortion, conformal_energy, Stats};
+use crate::omt::{OtOptions, RadialDensity, StereographicDensity, UniformDensity};
+use crate::progress::{self, Progress, Stage};
+use std::time::Instant;
+
+/// Options of [`parameterize`].
+#[derive(Debug, Clone)]
+pub struct ParamOptions {
+    /// Target domain. Default [`Domain::Adaptive`].
+    pub domain: Domain,
+    /// Absolute tolerance on `Z*` for the radius search. Default `1e-3`.
+    pub z_tolerance: f64,
+    /// Maximum transport solves in the radius search. Default 30.
+    pub max_search_evaluations: usize,
+    /// Transport solver options.
+    pub transport: OtOptions,
+    /// Disk conformal map options.
+    pub flatten: DiskConformalOptions,
+    /// Initial map of open surfaces. Default [`OpenInitialMap::Conformal`] (the paper's).
+    pub open_initial: OpenInitialMap,
+    /// Regularisation of the centroid map (see [`super::regularize`]); 0 is the paper's plain
+    /// centroid map. Default 0.
+    pub smoothing: f64,
+    /// Closed-surface flattening options (lambda, puncture, stretch energy).
+    pub closed: ClosedFlattenOptions,
+    /// Vertices closer than this times the bounding-box diagonal are welded before mapping
+    /// (coincident vertices make zero-area faces). Default `1e-9`.
+    pub weld_tolerance: f64,
+}
+
+impl Default for ParamOptions {
+    fn default() -> Self {
+        Self {
+            domain: Domain::Adaptive,
+            z_tolerance: 1e-3,
+            max_search_evaluations: 30,
+            transport: OtOptions::default(),
+            flatten: DiskConformalOptions::default(),
+            closed: ClosedFlattenOptions::default(),
+            smoothing: 0.0,
+            open_initial: OpenInitialMap::Conformal,
+            weld_tolerance: 1e-9,
+        }
+    }
+}
+
+impl ParamOptions {
+    /// Set the domain.
+    pub fn with_domain(mut self, d: Domain) -> Self {
+        self.domain = d;
+        self
+    }
+}
+
+/// Initial flattening of open surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum OpenInitialMap {
+    /// Disk conformal map (paper Sec. 3.1.1).
+    #[default]
+    Conformal,
+    /// Stretch energy map composed with `lambda * mu` (the closed-surface recipe, Sec. 3.2.1).
+    Composite,
+}
+
+/// The initial flattening's report, by surface kind.
+#[derive(Debug, Clone, serde::Serialize)]
+#[serde(untagged)]
+pub enum FlattenReport {
+    /// Disk conformal map of an open surface.
+    Open(DiskConformalReport),
+    /// Puncture, stretch energy and quasi-conformal composition of a closed surface.
+    Closed(ClosedFlattenReport),
+}
+
+/// One evaluation of the radius search.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct RadiusSample {
+    /// Disk radius.
+    pub r: f64,
+    /// Cap bound for that radius.
+    pub z_star: f64,
+    /// Area-normalised mean `|mu|^2`.
+    pub energy: f64,
+    /// Newton iterations of that transport solve.
+    pub newton_iterations: usize,
+}
+
+/// Everything measured about one parameterization.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ParamReport {
+    /// Domain used.
+    pub domain: String,
+    /// Surface kind.
+    pub kind: String,
+    /// Input vertices.
+    pub n_vertices: usize,
+    /// Input faces.
+    pub n_faces: usize,
+    /// Vertices merged with a coincident one before mapping.
+    pub welded_vertices: usize,
+    /// Optimal (or fixed) disk radius; `None` for the planar disk.
+    pub r_star: Option<f64>,
+    /// Cap bound `Z*`; `None` for the planar disk.
+    pub z_star: Option<f64>,
+    /// Per-face area distortion statistics.
+    pub area_distortion: Stats,
+    /// Per-corner angle distortion statistics (radians).
+    pub angle_distortion: Stats,
+    /// Area-normalised mean `|mu|^2` at the final radius.
+    pub conformal_energy: f64,
+    /// Faces with non-positive orientation in the final map.
+    pub flipped_faces: usize,
+    /// The repair of folded faces after transport (see [`super::untangle`]).
+    pub untangle: UntangleReport,
+    /// Newton iterations over all transport solves.
+    pub newton_iterations: usize,
+    /// Transport solves.
+    pub transport_solves: usize,
+    /// Radius search evaluations in order.
+    pub radius_curve: Vec<RadiusSample>,
+    /// Initial flattening report.
+    pub flatten: FlattenReport,
+    /// The punctured quadrilateral of a closed surface (indices in the welded mesh).
+    pub puncture: Option<Puncture>,
+    /// Wall-clock seconds of the whole parameterization.
+    pub seconds: f64,
+    /// Seconds spent in the initial flattening.
+    pub flatten_seconds: f64,
+    /// Seconds spent in transport solves (radius search included).
+    pub transport_seconds: f64,
+}
+
+/// A parameterization onto the cap (or the planar disk).
+#[derive(Debug, Clone)]
+pub struct CapMap {
+    /// Positions on the disk of radius `r*` (`h_r* o r* g`), one per input vertex.
+    pub plane: Vec<[f64; 2]>,
+    /// Positions on the unit sphere (`Z >= Z*`), or `(x, y, 0)` for the planar disk.
+    pub cap: Vec<[f64; 3]>,
+    /// What was measured.
+    pub report: ParamReport,
+}
+
+impl CapMap {
+    /// The input mesh with its vertices moved onto the cap (same connectivity).
+    pub fn cap_mesh(&self, mesh: &TriMesh) -> TriMesh {
+        TriMesh::new(self.cap.clone(), mesh.faces.clone())
+    }
+}
+
+/// Parameterize a disk-like `mesh` onto the domain of `options`.
+pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+    let start = Instant::now();
+    progress::check(progress, Stage::Validate, 0.0, "checking the mesh")?;
+    let diag = mesh.bounding_box_diagonal();
+    let welded = repair::weld_coincident(mesh, options.weld_tolerance * diag);
+    let work = &welded.mesh;
+    let (kind, topology) = validate(work)?;
+    progress::check(progress, Stage::Flatten, 0.0, "initial flattening")?;
+    let t_flat = Instant::now();
+    let (faces, boundary, disk, flatten_report, puncture) = match kind {
+        SurfaceKind::OpenDisk => {
+            let boundary = topology.boundary_loops[0].clone();
+            if options.open_initial == OpenInitialMap::Composite {
+                let (disk, rep) = composite_disk_map(&work.vertices, &work.faces, &boundary, &options.closed)?;
+                (work.faces.clone(), boundary, disk, FlattenReport::Closed(rep), None)
+            } else {
+                let (disk, rep) = disk_conformal_map(&work.vertices, &work.faces, &boundary, &options.flatten)?;
+                (work.faces.clone(), boundary, disk, FlattenReport::Open(rep), None)
+            }
+        }
+        SurfaceKind::ClosedSphere => {
+            let flat = flatten_closed(work, &options.closed)?;
+            (flat.faces, flat.puncture.quad.to_vec(), flat.uv, FlattenReport::Closed(flat.report), Some(flat.puncture))
+        }
+    };
+    let flatten_seconds = t_flat.elapsed().as_secs_f64();
+    let mut on_boundary = vec![false; work.n_vertices()];
+    for &b in &boundary {
+        on_boundary[b as usize] = true;
+    }
+    let target = vertex_areas(&work.vertices, &faces);
+    let stereo = StereographicDensity;
+    let uniform = UniformDensity;
+    let density: &dyn RadialDensity = if options.domain == Domain::Disk { &uniform } else { &stereo };
+    let cot = cotangent_weights(&work.vertices, &faces);
+    let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, density, options.transport.clone(), &cot, options.smoothing);
+    let t_ot = Instant::now();
+    let mut curve = Vec::new();
+    let (radius, mut plane) = match options.domain {
+        Domain::Disk => (1.0, transport.map_at(1.0, progress)?.0),
+        Domain::Adaptive => {
+            let mut best: Option<(f64, f64, Vec<[f64; 2]>)> = None;
+            let mut evals = 0usize;
+            let max_evals = options.max_search_evaluations;
+            let mut objective = |z: f64| -> Result<f64, Error> {
+                let r = radius_of_z_star(z);
+                evals += 1;
+                progress::check(progress, Stage::RadiusSearch, evals as f64 / max_evals as f64, &format!("r = {r:.4}, Z* = {z:.4}"))?;
+                let (pos, rep) = transport.map_at(r, progress)?;
+                let e = conformal_energy(&work.vertices, &pos, &faces);
+                curve.push(RadiusSample { r, z_star: z, energy: e, newton_iterations: rep.iterations });
+                if best.as_ref().map_or(true, |b| e < b.1) {
+                    best = Some((r, e, pos));
+                }
+                Ok(e)
+            };
+            let (z_lo, z_hi) = (z_star_of_radius(MAX_RADIUS), z_star_of_radius(MIN_RADIUS));
+            brent::minimize(&mut objective, z_lo, z_hi, options.z_tolerance, max_evals)?;
+            let (r, _, pos) = best.ok_or_else(|| Error::Unsupported("radius search made no evaluation".into()))?;
+            (r, pos)
+        }
+        fixed => {
+            let r = fixed.fixed_radius().unwrap_or(1.0);
+            (r, transport.map_at(r, progress)?.0)
+        }
+    };
+    let transport_seconds = t_ot.elapsed().as_secs_f64();
+    let untangle_report = untangle(&mut plane, &faces, &on_boundary, radius);
+    progress::check(progress, Stage::Project, 0.0, "inverse stereographic projection")?;
+    let cap_work: Vec<[f64; 3]> = if options.domain == Domain::Disk {
+        plane.iter().map(|p| [p[0], p[1], 0.0]).collect()
+    } else {
+        plane.iter().map(|&p| inverse_stereographic(p)).collect()
+    };
+    let flipped_faces = faces
+        .iter()
+        .filter(|f| signed_area_2d(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize]) <= 0.0)
+        .count();
+    let spherical = options.domain != Domain::Disk;
+    let report = ParamReport {
+        domain: options.domain.to_string(),
+        kind: kind.to_string(),
+        n_vertices: mesh.n_vertices(),
+        n_faces: mesh.n_faces(),
+        welded_vertices: welded.merged_vertices,
+        r_star: spherical.then_some(radius),
+        z_star: spherical.then(|| z_star_of_radius(radius)),
+        area_distortion: Stats::of(area_distortion(&work.vertices, &cap_work, &faces)),
+        angle_distortion: Stats::of(angle_distortion(&work.vertices, &cap_work, &faces)),
+        conformal_energy: conformal_energy(&work.vertices, &plane, &faces),
+        flipped_faces,
+        untangle: untangle_report,
+        newton_iterations: transport.newton_iterations,
+        transport_solves: transport.solves,
+        radius_curve: curve,
+        flatten: flatten_report,
+        puncture,
+        seconds: start.elapsed().as_secs_f64(),
+        flatten_seconds,
+        transport_seconds,
+    };
+    // Back to the input's vertex numbering; vertices no face uses go to the origin.
+    let plane_all = welded.old_to_new.iter().map(|&v| plane.get(v as usize).copied().unwrap_or([0.0; 2])).collect();
+    let cap_all = welded.old_to_new.iter().map(|&v| cap_work.get(v as usize).copied().unwrap_or([0.0; 3])).collect();
+    Ok(CapMap { plane: plane_all, cap: cap_all, report })
+}

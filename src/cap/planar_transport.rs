@@ -1,0 +1,83 @@
+//! The planar step `h_r o r g` of the paper (Sec. 3.1.2): the initial disk map `g` scaled to
+//! the disk of radius `r`, then moved by the optimal transport map `h_r` whose target masses
+//! are the vertex areas (Eq. 11, normalised to the disk's sigma-mass). A vertex goes to the
+//! sigma-weighted centroid of its power cell; boundary vertices are put on the circle.
+//!
+//! One [`PlanarTransport`] serves the whole radius search: its solver is rescaled to each new
+//! radius, so Newton starts from the previous radius's weights.
+
+use super::regularize::CentroidSmoother;
+use crate::linalg::CotanWeights;
+use crate::omt::{CellIntegrals, OmtError, OtOptions, OtReport, OtSolver, RadialDensity};
+use crate::progress::Progress;
+
+/// Planar transport maps of one initial disk map at any radius.
+pub struct PlanarTransport<'a> {
+    disk_map: &'a [[f64; 2]],
+    on_boundary: &'a [bool],
+    target: &'a [f64],
+    density: &'a dyn RadialDensity,
+    options: OtOptions,
+    solver: Option<OtSolver<'a>>,
+    smoother: CentroidSmoother<'a>,
+    kappa: f64,
+    /// Newton iterations over all radii.
+    pub newton_iterations: usize,
+    /// Transport solves.
+    pub solves: usize,
+}
+
+impl<'a> PlanarTransport<'a> {
+    /// Transport of `disk_map` (unit disk positions) towards `target` masses; the centroid
+    /// map is regularised with strength `kappa` using the surface's cotangent `weights`
+    /// (see [`super::regularize`]).
+    pub fn new(
+        disk_map: &'a [[f64; 2]],
+        on_boundary: &'a [bool],
+        target: &'a [f64],
+        density: &'a dyn RadialDensity,
+        options: OtOptions,
+        weights: &'a CotanWeights,
+        kappa: f64,
+    ) -> Self {
+        let smoother = CentroidSmoother::new(weights, on_boundary);
+        Self { disk_map, on_boundary, target, density, options, solver: None, smoother, kappa, newton_iterations: 0, solves: 0 }
+    }
+
+    /// Vertex positions of `h_r o r g` on the disk of radius `r`.
+    pub fn map_at(&mut self, r: f64, progress: &dyn Progress) -> Result<(Vec<[f64; 2]>, OtReport), OmtError> {
+        let solver = match self.solver.as_mut() {
+            Some(s) => {
+                let scale = r / s.radius();
+                s.rescale(scale);
+                s
+            }
+            None => {
+                let sites: Vec<[f64; 2]> = self.disk_map.iter().map(|p| [r * p[0], r * p[1]]).collect();
+                self.solver.insert(OtSolver::new(&sites, r, self.density)?)
+            }
+        };
+        let (cells, report) = solver.solve(self.target, &self.options, progress)?;
+        self.newton_iterations += report.iterations;
+        self.solves += 1;
+        let c = positions(&cells, solver.sites(), self.on_boundary, r);
+        let p = self.smoother.smooth(&c, &cells.mass, self.kappa).map_err(OmtError::Linear)?;
+        Ok((p, report))
+    }
+}
+
+/// Centroids of the cells; boundary vertices projected onto the circle of radius `r`.
+fn positions(cells: &CellIntegrals, sites: &[[f64; 2]], on_boundary: &[bool], r: f64) -> Vec<[f64; 2]> {
+    (0..sites.len())
+        .map(|i| {
+            let c = cells.centroid(i).unwrap_or(sites[i]);
+            if on_boundary[i] {
+                let n = (c[0] * c[0] + c[1] * c[1]).sqrt();
+                if n > 0.0 {
+                    return [r * c[0] / n, r * c[1] / n];
+                }
+            }
+            c
+        })
+        .collect()
+}

@@ -1,0 +1,151 @@
+//! Repair of folded faces in the planar transport map.
+//!
+//! Placing each vertex at the centroid of its power cell (Zhao et al. 2013) does not guarantee
+//! an orientation-preserving piecewise-linear map: where the initial map squeezed a protrusion
+//! (ears, fingers) a few triangles can fold. The repair solves one Tutte-type system
+//! (Floater's convex combination maps): every free vertex becomes a convex combination of its
+//! neighbours, with the mean value coordinates of its transport position where that position
+//! lies in the kernel of its neighbours' polygon (the weights then reproduce it exactly) and
+//! uniform weights where it does not. With positive weights and the boundary on the circle the
+//! result is an embedding (Tutte 1963, Floater 2003), and where the transport map was already
+//! valid it changes only near the folds.
+
+use crate::linalg::{LuSolver, TripletList};
+use crate::mesh::geometry::signed_area_2d;
+
+/// Faces with non-positive signed area.
+pub fn folded_faces(pos: &[[f64; 2]], faces: &[[u32; 3]]) -> Vec<usize> {
+    faces
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| signed_area_2d(pos[f[0] as usize], pos[f[1] as usize], pos[f[2] as usize]) <= 0.0)
+        .map(|(i, _)| i)
+        .collect()
+}
+
+/// What the repair did.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
+pub struct UntangleReport {
+    /// Folded faces before the repair.
+    pub folded_before: usize,
+    /// Vertices whose position was not a positive combination of their neighbours (they got
+    /// uniform weights).
+    pub uniform_vertices: usize,
+    /// Largest displacement of a vertex, relative to the disk radius.
+    pub max_displacement: f64,
+    /// Folded faces left (0 unless the solve failed).
+    pub folded_after: usize,
+}
+
+/// Ordered (counter-clockwise) one-ring of every vertex whose fan closes; `None` elsewhere.
+pub fn ordered_rings(n: usize, faces: &[[u32; 3]]) -> Vec<Option<Vec<u32>>> {
+    // next[v]: list of (a, b) with face (v, a, b).
+    let mut fans: Vec<Vec<(u32, u32)>> = vec![Vec::new(); n];
+    for f in faces {
+        for k in 0..3 {
+            fans[f[k] as usize].push((f[(k + 1) % 3], f[(k + 2) % 3]));
+        }
+    }
+    fans.into_iter()
+        .map(|fan| {
+            let first = fan.first()?.0;
+            let mut ring = Vec::with_capacity(fan.len());
+            let mut cur = first;
+            for _ in 0..fan.len() {
+                ring.push(cur);
+                cur = fan.iter().find(|(a, _)| *a == cur)?.1;
+            }
+            (cur == first).then_some(ring)
+        })
+        .collect()
+}
+
+/// Mean value coordinates of `p` in the polygon `ring` (counter-clockwise), or `None` when
+/// `p` is not strictly inside its kernel.
+fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
+    let m = ring.len();
+    let d: Vec<[f64; 2]> = ring.iter().map(|q| [q[0] - p[0], q[1] - p[1]]).collect();
+    let r: Vec<f64> = d.iter().map(|v| (v[0] * v[0] + v[1] * v[1]).sqrt()).collect();
+    if r.iter().any(|&x| x == 0.0) {
+        return None;
+    }
+    let mut tan_half = Vec::with_capacity(m);
+    let mut total = 0.0;
+    for j in 0..m {
+        let (a, b) = (d[j], d[(j + 1) % m]);
+        let cr = a[0] * b[1] - a[1] * b[0];
+        let dt = a[0] * b[0] + a[1] * b[1];
+        let ang = cr.atan2(dt);
+        if ang <= 0.0 {
+            return None;
+        }
+        total += ang;
+        tan_half.push((0.5 * ang).tan());
+    }
+    if (total - 2.0 * std::f64::consts::PI).abs() > 1e-6 {
+        return None;
+    }
+    Some((0..m).map(|j| (tan_half[(j + m - 1) % m] + tan_half[j]) / r[j]).collect())
+}
+
+/// Unfold `pos` in place if any face is folded. `fixed[v]` marks vertices that must not move
+/// (the boundary, on the circle of radius `radius`).
+pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius: f64) -> UntangleReport {
+    let folded = folded_faces(pos, faces);
+    let mut report = UntangleReport { folded_before: folded.len(), ..Default::default() };
+    if folded.is_empty() {
+        return report;
+    }
+    let n = pos.len();
+    let rings = ordered_rings(n, faces);
+    let mut index = vec![usize::MAX; n];
+    let mut m = 0;
+    for v in 0..n {
+        if !fixed[v] && rings[v].is_some() {
+            index[v] = m;
+            m += 1;
+        }
+    }
+    let mut trip = TripletList::with_capacity(m, 8 * m);
+    let mut rhs = vec![vec![0.0; m], vec![0.0; m]];
+    for v in 0..n {
+        let (i, Some(ring)) = (index[v], rings[v].as_ref()) else { continue };
+        if i == usize::MAX {
+            continue;
+        }
+        let poly: Vec<[f64; 2]> = ring.iter().map(|&u| pos[u as usize]).collect();
+        let w = mean_value_weights(pos[v], &poly).unwrap_or_else(|| {
+            report.uniform_vertices += 1;
+            vec![1.0; ring.len()]
+        });
+        let sum: f64 = w.iter().sum();
+        trip.push(i, i, 1.0);
+        for (&u, wu) in ring.iter().zip(&w) {
+            let wu = wu / sum;
+            if index[u as usize] != usize::MAX {
+                trip.push(i, index[u as usize], -wu);
+            } else {
+                rhs[0][i] += wu * pos[u as usize][0];
+                rhs[1][i] += wu * pos[u as usize][1];
+            }
+        }
+    }
+    let solved = trip.assemble("fold repair").and_then(|mat| {
+        let mut solver = LuSolver::new();
+        solver.factor(&mat, "fold repair")?;
+        solver.solve_in_place(&mut rhs, "fold repair")
+    });
+    if solved.is_ok() {
+        for v in 0..n {
+            let i = index[v];
+            if i != usize::MAX {
+                let q = [rhs[0][i], rhs[1][i]];
+                let dd = ((q[0] - pos[v][0]).powi(2) + (q[1] - pos[v][1]).powi(2)).sqrt() / radius;
+                report.max_displacement = report.max_displacement.max(dd);
+                pos[v] = q;
+            }
+        }
+    }
+    report.folded_after = folded_faces(pos, faces).len();
+    report
+}

@@ -1,0 +1,170 @@
+//! Stretch energy minimisation (Yueh, Lin, Wu and Yau 2019), the equiareal initial map of the
+//! paper's closed-surface pipeline (Sec. 3.2.1).
+//!
+//! The stretch energy of a planar map `f` of a triangle mesh is
+//! `E_S(f) = sum_T |f(T)|^2 / |T|`; with the boundary fixed (so the total image area is fixed)
+//! it is minimised exactly when every face keeps its share of the area. Its gradient is
+//! `2 L_S(f) f`, where `L_S(f)` is the Laplacian of the image's cotangent weights scaled by
+//! each face's stretch `|f(T)| / |T|`; on a corner `k` facing edge `ij` that weight is
+//! `(f_i - f_k) . (f_j - f_k) / (4 |T|)`, defined even for folded image faces. The
+//! minimiser is found by the fixed-point iteration `L_S(f^k)_II f^{k+1}_I = -L_S(f^k)_IB f_B`.
+
+use super::FlattenError;
+use crate::linalg::{SpdSolver, TripletList};
+use crate::mesh::geometry::{signed_area_2d, triangle_area};
+
+/// Options of the stretch energy minimisation.
+#[derive(Debug, Clone)]
+pub struct StretchOptions {
+    /// Maximum fixed-point iterations. Default 100.
+    pub max_iterations: usize,
+    /// Stop when the relative energy decrease falls below this. Default `1e-6`.
+    pub tolerance: f64,
+}
+
+impl Default for StretchOptions {
+    fn default() -> Self {
+        Self { max_iterations: 100, tolerance: 1e-6 }
+    }
+}
+
+/// What the minimisation did.
+#[derive(Debug, Clone, Default, serde::Serialize)]
+pub struct StretchReport {
+    /// Iterations.
+    pub iterations: usize,
+    /// Energy before and after, divided by the minimum `(sum |f(T)|)^2 / sum |T|` (1 is
+    /// perfectly equiareal).
+    pub initial_energy_ratio: f64,
+    /// See `initial_energy_ratio`.
+    pub final_energy_ratio: f64,
+}
+
+/// `E_S(f) = sum_T |f(T)|^2 / |T|` with signed image areas.
+pub fn stretch_energy(vertices: &[[f64; 3]], faces: &[[u32; 3]], f: &[[f64; 2]]) -> f64 {
+    faces
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| v as usize);
+            let s = triangle_area(vertices[a], vertices[b], vertices[c]);
+            let img = signed_area_2d(f[a], f[b], f[c]);
+            if s > 0.0 { img * img / s } else { 0.0 }
+        })
+        .sum()
+}
+
+/// The gradient `2 L_S(f) f` of [`stretch_energy`].
+pub fn stretch_gradient(vertices: &[[f64; 3]], faces: &[[u32; 3]], f: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut g = vec![[0.0; 2]; f.len()];
+    for (t, w) in faces.iter().zip(corner_weights(vertices, faces, f)) {
+        for k in 0..3 {
+            let (i, j) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
+            for (a, b) in [(i, j), (j, i)] {
+                g[a][0] += 2.0 * w[k] * (f[a][0] - f[b][0]);
+                g[a][1] += 2.0 * w[k] * (f[a][1] - f[b][1]);
+            }
+        }
+    }
+    g
+}
+
+/// Per face, the weight of the edge opposite each corner.
+fn corner_weights(vertices: &[[f64; 3]], faces: &[[u32; 3]], f: &[[f64; 2]]) -> Vec<[f64; 3]> {
+    faces
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| v as usize);
+            let s = triangle_area(vertices[a], vertices[b], vertices[c]);
+            if s <= 0.0 {
+                return [0.0; 3];
+            }
+            let idx = [a, b, c];
+            std::array::from_fn(|k| {
+                let (o, i, j) = (idx[k], idx[(k + 1) % 3], idx[(k + 2) % 3]);
+                let d = (f[i][0] - f[o][0]) * (f[j][0] - f[o][0]) + (f[i][1] - f[o][1]) * (f[j][1] - f[o][1]);
+                d / (4.0 * s)
+            })
+        })
+        .collect()
+}
+
+/// Minimise the stretch energy from `initial` with the vertices in `fixed` held.
+pub fn stretch_energy_map(
+    vertices: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    fixed: &[(u32, [f64; 2])],
+    initial: &[[f64; 2]],
+    options: &StretchOptions,
+) -> Result<(Vec<[f64; 2]>, StretchReport), FlattenError> {
+    let n = vertices.len();
+    let mut f = initial.to_vec();
+    let mut is_fixed = vec![false; n];
+    for &(v, p) in fixed {
+        f[v as usize] = p;
+        is_fixed[v as usize] = true;
+    }
+    let mut index = vec![usize::MAX; n];
+    let mut n_free = 0;
+    for v in 0..n {
+        if !is_fixed[v] {
+            index[v] = n_free;
+            n_free += 1;
+        }
+    }
+    let surface_area: f64 = faces.iter().map(|t| triangle_area(vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize])).sum();
+    let ratio = |f: &[[f64; 2]]| {
+        let img: f64 = faces.iter().map(|t| signed_area_2d(f[t[0] as usize], f[t[1] as usize], f[t[2] as usize])).sum();
+        stretch_energy(vertices, faces, f) / (img * img / surface_area)
+    };
+    let mut report = StretchReport { initial_energy_ratio: ratio(&f), ..Default::default() };
+    let mut energy = stretch_energy(vertices, faces, &f);
+    let mut solver = SpdSolver::new();
+    for it in 0..options.max_iterations {
+        let weights = corner_weights(vertices, faces, &f);
+        let mut trip = TripletList::with_capacity(n_free, 12 * faces.len());
+        let mut rhs = vec![vec![0.0; n_free], vec![0.0; n_free]];
+        for (t, w) in faces.iter().zip(&weights) {
+            for k in 0..3 {
+                let (i, j) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
+                let wk = w[k];
+                for (a, b) in [(i, j), (j, i)] {
+                    if is_fixed[a] {
+                        continue;
+                    }
+                    trip.push(index[a], index[a], wk);
+                    if is_fixed[b] {
+                        rhs[0][index[a]] += wk * f[b][0];
+                        rhs[1][index[a]] += wk * f[b][1];
+                    } else {
+                        trip.push(index[a], index[b], -wk);
+                    }
+                }
+            }
+        }
+        if n_free == 0 {
+            break;
+        }
+        let mat = trip.assemble("stretch energy")?;
+        solver.factor(&mat, "stretch energy")?;
+        solver.solve_in_place(&mut rhs, "stretch energy")?;
+        let mut next = f.clone();
+        for v in 0..n {
+            if !is_fixed[v] {
+                next[v] = [rhs[0][index[v]], rhs[1][index[v]]];
+            }
+        }
+        let e = stretch_energy(vertices, faces, &next);
+        report.iterations = it + 1;
+        if !(e.is_finite()) || e > energy {
+            break;
+        }
+        let decrease = (energy - e) / energy;
+        f = next;
+        energy = e;
+        if decrease < options.tolerance {
+            break;
+        }
+    }
+    report.final_energy_ratio = ratio(&f);
+    Ok((f, report))
+}

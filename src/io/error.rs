@@ -1,0 +1,233 @@
+//! Errors of mesh reading and writing. Every message names the file, where in it the problem
+//! is (1-based line for text formats, byte offset for binary ones), what is wrong and what to do.
+
+use std::fmt;
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+/// A place in a mesh file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Location {
+    /// 1-based line of a text file.
+    Line(usize),
+    /// 0-based byte offset in a binary file.
+    Byte(u64),
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Location::Line(n) => write!(f, "line {n}"),
+            Location::Byte(n) => write!(f, "byte offset {n}"),
+        }
+    }
+}
+
+/// Why a mesh file could not be read.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum ReadError {
+    /// The file could not be opened or read.
+    #[error("cannot read {}: {source}; check the path and the file's permissions", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// The extension is not one of the supported formats.
+    #[error(
+        "{}: unknown mesh format '{extension}'; capmesh reads .obj, .ply, .off and .stl files, \
+         optionally gzip-compressed (.obj.gz, ...); convert other formats with MeshLab or meshio",
+        path.display()
+    )]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+        /// Its extension (empty when it has none).
+        extension: String,
+    },
+
+    /// A `.gz` file could not be decompressed.
+    #[error(
+        "cannot decompress {}: {source}; the .gz file is corrupt or truncated, download or \
+         compress it again (or check it with 'gzip -t')",
+        path.display()
+    )]
+    Decompress {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// The file has no vertices and no faces.
+    #[error(
+        "{}: the file is empty (no vertices, no faces); check that the export or download \
+         finished",
+        path.display()
+    )]
+    Empty {
+        /// The file.
+        path: PathBuf,
+    },
+
+    /// Malformed content.
+    #[error("{}, {at}: {message}", path.display())]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// Where.
+        at: Location,
+        /// What is wrong and what to do.
+        message: String,
+    },
+
+    /// The file ends before everything its header announced.
+    #[error(
+        "{}: the file is truncated: expected {expected} {what} but it ends after {found}; it was \
+         cut short (interrupted download, copy or export), produce it again",
+        path.display()
+    )]
+    Truncated {
+        /// The file.
+        path: PathBuf,
+        /// What was being read ("vertices", "faces", "bytes", ...).
+        what: String,
+        /// How many were announced.
+        expected: u64,
+        /// How many were present.
+        found: u64,
+    },
+
+    /// A face refers to a vertex that does not exist.
+    #[error(
+        "{}, {at}: a face refers to vertex {index} (as written in the file), but the file has \
+         {n_vertices} vertices; the file is corrupt, export it again",
+        path.display()
+    )]
+    IndexOutOfRange {
+        /// The file.
+        path: PathBuf,
+        /// Where the face is.
+        at: Location,
+        /// The index as written in the file (1-based or negative for OBJ, 0-based otherwise).
+        index: i64,
+        /// Number of vertices in the file.
+        n_vertices: usize,
+    },
+
+    /// A vertex coordinate is NaN or infinite.
+    #[error(
+        "{}, {at}: a vertex coordinate is not a finite number (NaN or infinity); fix or delete \
+         that vertex in the source data",
+        path.display()
+    )]
+    NonFinite {
+        /// The file.
+        path: PathBuf,
+        /// Where the vertex is.
+        at: Location,
+    },
+
+    /// Vertices but no faces.
+    #[error(
+        "{}: the file has {n_vertices} vertices but no faces (a point cloud); capmesh needs a \
+         triangulated surface, reconstruct one first (MeshLab: 'Surface Reconstruction: \
+         Screened Poisson')",
+        path.display()
+    )]
+    NoFaces {
+        /// The file.
+        path: PathBuf,
+        /// Number of vertices read.
+        n_vertices: usize,
+    },
+
+    /// A PLY feature capmesh does not read.
+    #[error(
+        "{}: unsupported PLY file: {message}; save it again as a PLY with vertex x, y, z and \
+         face vertex_indices (MeshLab: File > Export Mesh As > PLY)",
+        path.display()
+    )]
+    UnsupportedPly {
+        /// The file.
+        path: PathBuf,
+        /// What is unsupported.
+        message: String,
+    },
+}
+
+/// Why a mesh file could not be written.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum WriteError {
+    /// The file could not be created or written.
+    #[error(
+        "cannot write {}: {source}; check that the directory exists, is writable and has free \
+         space",
+        path.display()
+    )]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// The extension is not one of the supported formats.
+    #[error(
+        "{}: unknown mesh format '{extension}'; capmesh writes .obj, .ply, .off and .stl files, \
+         optionally gzip-compressed (.obj.gz, ...)",
+        path.display()
+    )]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+        /// Its extension (empty when it has none).
+        extension: String,
+    },
+
+    /// The mesh refers to a vertex that does not exist.
+    #[error(
+        "{}: not written: face {face} refers to vertex {index}, but the mesh has {n_vertices} \
+         vertices (a bug in the code that built the mesh)",
+        path.display()
+    )]
+    IndexOutOfRange {
+        /// The file.
+        path: PathBuf,
+        /// Face index.
+        face: usize,
+        /// Offending vertex index.
+        index: u32,
+        /// Number of vertices.
+        n_vertices: usize,
+    },
+
+    /// A coordinate is NaN or infinite.
+    #[error(
+        "{}: not written: vertex {vertex} has a non-finite coordinate (NaN or infinity)",
+        path.display()
+    )]
+    NonFinite {
+        /// The file.
+        path: PathBuf,
+        /// Vertex index.
+        vertex: usize,
+    },
+
+    /// The format cannot store this mesh.
+    #[error("{}: not written: {message}", path.display())]
+    Unsupported {
+        /// The file.
+        path: PathBuf,
+        /// Why, and what to use instead.
+        message: String,
+    },
+}

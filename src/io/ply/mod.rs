@@ -1,0 +1,295 @@
+//! PLY, ASCII and binary (little and big endian).
+//!
+//! Reads the `vertex` element's `x`, `y`, `z` (any scalar type) and the `face` element's
+//! `vertex_indices` (or `vertex_index`) list (any integer count and index types), skipping
+//! every other property and element, lists included. Polygons are fan-triangulated. Writes
+//! `double` coordinates and `uchar`/`int` index lists.
+
+mod header;
+mod source;
+
+use std::io::Write;
+use std::path::Path;
+
+use self::header::{Element, Encoding, Property};
+use self::source::{AsciiSource, BinarySource, Source, ValueError};
+use super::error::{Location, ReadError};
+use super::{fan, parse_error};
+use crate::mesh::TriMesh;
+
+/// What a property means to us.
+#[derive(Clone, Copy)]
+enum Role {
+    Coordinate(usize),
+    Indices,
+    Skip,
+}
+
+fn unsupported(path: &Path, message: String) -> ReadError {
+    ReadError::UnsupportedPly {
+        path: path.to_path_buf(),
+        message,
+    }
+}
+
+/// Roles of the vertex element's properties (`x`, `y`, `z` must be scalars).
+fn vertex_roles(path: &Path, element: &Element) -> Result<Vec<Role>, ReadError> {
+    let mut roles = vec![Role::Skip; element.properties.len()];
+    for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
+        let i = element
+            .properties
+            .iter()
+            .position(|p| p.name() == axis.as_bytes())
+            .ok_or_else(|| {
+                unsupported(path, format!("the vertex element has no '{axis}' property"))
+            })?;
+        if !matches!(element.properties[i], Property::Scalar { .. }) {
+            return Err(unsupported(path, "a vertex coordinate is a list".into()));
+        }
+        roles[i] = Role::Coordinate(k);
+    }
+    Ok(roles)
+}
+
+/// Roles of the face element's properties (one integer index list).
+fn face_roles(path: &Path, element: &Element) -> Result<Vec<Role>, ReadError> {
+    let mut roles = vec![Role::Skip; element.properties.len()];
+    let i = element
+        .properties
+        .iter()
+        .position(|p| matches!(p.name(), b"vertex_indices" | b"vertex_index"))
+        .ok_or_else(|| unsupported(path, "the face element has no 'vertex_indices' list".into()))?;
+    match element.properties[i] {
+        Property::List { item, .. } if item.is_integer() => roles[i] = Role::Indices,
+        _ => {
+            return Err(unsupported(
+                path,
+                "the face 'vertex_indices' property is not a list of integers".into(),
+            ))
+        }
+    }
+    Ok(roles)
+}
+
+/// Parse a PLY file's bytes.
+pub(crate) fn read(path: &Path, data: &[u8]) -> Result<TriMesh, ReadError> {
+    let header = header::parse(path, data)?;
+    let vertex = header.elements.iter().position(|e| e.name == b"vertex");
+    let face = header.elements.iter().position(|e| e.name == b"face");
+    if face.is_none() && header.elements.iter().any(|e| e.name == b"tristrips") {
+        return Err(unsupported(
+            path,
+            "triangle strips ('tristrips') are not supported".into(),
+        ));
+    }
+    let mut roles: Vec<Vec<Role>> = header
+        .elements
+        .iter()
+        .map(|e| vec![Role::Skip; e.properties.len()])
+        .collect();
+    if let Some(v) = vertex {
+        if header.elements[v].count > u64::from(u32::MAX) {
+            return Err(unsupported(path, "more than 4294967295 vertices".into()));
+        }
+        roles[v] = vertex_roles(path, &header.elements[v])?;
+    }
+    if let Some(f) = face {
+        roles[f] = face_roles(path, &header.elements[f])?;
+    }
+    match header.encoding {
+        Encoding::Ascii => {
+            let mut src = AsciiSource::new(data, header.data_start, header.header_lines + 1);
+            read_data(path, &header.elements, &roles, vertex, face, &mut src)
+        }
+        Encoding::BinaryLittleEndian | Encoding::BinaryBigEndian => {
+            let big = header.encoding == Encoding::BinaryBigEndian;
+            let mut src = BinarySource::new(data, header.data_start, big);
+            read_data(path, &header.elements, &roles, vertex, face, &mut src)
+        }
+    }
+}
+
+/// Read one element instance; `on_coordinate` / `on_indices` receive the values we keep.
+fn read_instance<S: Source>(
+    src: &mut S,
+    element: &Element,
+    roles: &[Role],
+    xyz: &mut [f64; 3],
+    polygon: &mut Vec<i64>,
+) -> Result<(), ValueError> {
+    for (property, role) in element.properties.iter().zip(roles) {
+        match (property, role) {
+            (Property::Scalar { ty, .. }, Role::Coordinate(k)) => xyz[*k] = src.real(*ty)?,
+            (Property::Scalar { ty, .. }, _) => src.skip(*ty, 1)?,
+            (Property::List { count, item, .. }, role) => {
+                let n = src.integer(*count)?;
+                let n = u64::try_from(n)
+                    .map_err(|_| ValueError::Bad(format!("negative list length {n}")))?;
+                if n > src.remaining() as u64 {
+                    return Err(ValueError::Eof);
+                }
+                if matches!(role, Role::Indices) {
+                    polygon.clear();
+                    for _ in 0..n {
+                        polygon.push(src.integer(*item)?);
+                    }
+                } else {
+                    src.skip(*item, n)?;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn read_data<S: Source>(
+    path: &Path,
+    elements: &[Element],
+    roles: &[Vec<Role>],
+    vertex: Option<usize>,
+    face: Option<usize>,
+    src: &mut S,
+) -> Result<TriMesh, ReadError> {
+    let mut vertices: Vec<[f64; 3]> = Vec::new();
+    let mut faces: Vec<[u32; 3]> = Vec::new();
+    let mut vertices_read = false;
+    // Indices not below the vertex count known when their face was read.
+    let mut pending: Vec<(Location, i64)> = Vec::new();
+    let mut polygon: Vec<i64> = Vec::new();
+    let mut indices: Vec<u32> = Vec::new();
+
+    for (e, element) in elements.iter().enumerate() {
+        let name = String::from_utf8_lossy(&element.name).into_owned();
+        let what = match Some(e) {
+            x if x == vertex => "vertices".to_string(),
+            x if x == face => "faces".to_string(),
+            _ => format!("'{name}' elements"),
+        };
+        let cap = (element.count.min(src.remaining() as u64 / 3)) as usize;
+        if Some(e) == vertex {
+            vertices.reserve(cap);
+        } else if Some(e) == face {
+            faces.reserve(cap);
+        }
+        if element.properties.is_empty() {
+            continue; // nothing to read, however many instances are announced
+        }
+        for i in 0..element.count {
+            let at = src.location();
+            let mut xyz = [0.0; 3];
+            polygon.clear();
+            read_instance(src, element, &roles[e], &mut xyz, &mut polygon).map_err(
+                |err| match err {
+                    ValueError::Eof => ReadError::Truncated {
+                        path: path.to_path_buf(),
+                        what: what.clone(),
+                        expected: element.count,
+                        found: i,
+                    },
+                    ValueError::Bad(message) => parse_error(
+                        path,
+                        src.location(),
+                        format!("{message} (in {name} {i}); the file is corrupt, export it again"),
+                    ),
+                },
+            )?;
+            if Some(e) == vertex {
+                if !xyz.iter().all(|x| x.is_finite()) {
+                    return Err(ReadError::NonFinite {
+                        path: path.to_path_buf(),
+                        at,
+                    });
+                }
+                vertices.push(xyz);
+            } else if Some(e) == face {
+                if polygon.len() < 3 {
+                    return Err(parse_error(
+                        path,
+                        at,
+                        format!(
+                            "face {i} has {} vertices, a face needs at least 3; delete it",
+                            polygon.len()
+                        ),
+                    ));
+                }
+                indices.clear();
+                for &index in &polygon {
+                    if index < 0 || index >= i64::from(u32::MAX) {
+                        return Err(ReadError::IndexOutOfRange {
+                            path: path.to_path_buf(),
+                            at,
+                            index,
+                            n_vertices: vertices.len(),
+                        });
+                    }
+                    if !vertices_read || index >= vertices.len() as i64 {
+                        pending.push((at, index));
+                    }
+                    indices.push(index as u32);
+                }
+                fan(&indices, &mut faces);
+            }
+        }
+        if Some(e) == vertex {
+            vertices_read = true;
+        }
+    }
+    if let Some(&(at, index)) = pending.iter().find(|&&(_, i)| i >= vertices.len() as i64) {
+        return Err(ReadError::IndexOutOfRange {
+            path: path.to_path_buf(),
+            at,
+            index,
+            n_vertices: vertices.len(),
+        });
+    }
+    Ok(TriMesh::new(vertices, faces))
+}
+
+fn write_header(w: &mut dyn Write, mesh: &TriMesh, format: &str) -> std::io::Result<()> {
+    let index_type = if mesh.n_vertices() > i32::MAX as usize {
+        "uint"
+    } else {
+        "int"
+    };
+    write!(
+        w,
+        "ply\nformat {format} 1.0\ncomment written by capmesh\nelement vertex {}\n\
+         property double x\nproperty double y\nproperty double z\nelement face {}\n\
+         property list uchar {index_type} vertex_indices\nend_header\n",
+        mesh.n_vertices(),
+        mesh.n_faces()
+    )
+}
+
+/// Write binary little-endian PLY. The mesh has been checked by the caller.
+pub(crate) fn write_binary(w: &mut dyn Write, mesh: &TriMesh) -> std::io::Result<()> {
+    write_header(w, mesh, "binary_little_endian")?;
+    let mut buf = [0u8; 24];
+    for p in &mesh.vertices {
+        for k in 0..3 {
+            buf[8 * k..8 * k + 8].copy_from_slice(&p[k].to_le_bytes());
+        }
+        w.write_all(&buf)?;
+    }
+    let mut rec = [0u8; 13];
+    rec[0] = 3;
+    for f in &mesh.faces {
+        for k in 0..3 {
+            rec[1 + 4 * k..5 + 4 * k].copy_from_slice(&f[k].to_le_bytes());
+        }
+        w.write_all(&rec)?;
+    }
+    Ok(())
+}
+
+/// Write ASCII PLY. The mesh has been checked by the caller.
+pub(crate) fn write_ascii(w: &mut dyn Write, mesh: &TriMesh) -> std::io::Result<()> {
+    write_header(w, mesh, "ascii")?;
+    for p in &mesh.vertices {
+        writeln!(w, "{:?} {:?} {:?}", p[0], p[1], p[2])?;
+    }
+    for f in &mesh.faces {
+        writeln!(w, "3 {} {} {}", f[0], f[1], f[2])?;
+    }
+    Ok(())
+}

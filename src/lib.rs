@@ -1,0 +1,39 @@
+//! # capmesh
+//!
+//! Adaptive area-preserving parameterization of open and closed anatomical surfaces onto a
+//! spherical cap `Z >= Z*` (Choi, Giri and Kumar), with remeshing through the cap and adaptive
+//! harmonics.
+//!
+//! The pipeline, one typed stage after another (each a pure function; solvers that keep
+//! factorizations between calls are objects):
+//!
+//! ```text
+//! io::read_mesh -> TriMesh -> mesh::validate -> SurfaceKind + Topology
+//!   -> flatten   : disk conformal map g            (paper Sec. 3.1.1)
+//!   -> omt       : h_r on the disk of radius r     (Sec. 2.2, 3.1.2)
+//!   -> cap       : r* by Brent's method, phi^-1    (Sec. 3.1.2-3.1.3, Eq. 12-14)
+//!   -> metrics   : d_area, d_angle, |mu|           (Sec. 4.1)
+//! ```
+//!
+//! ```no_run
+//! use capmesh::{io, cap, progress::NoProgress};
+//! let mesh = io::read_mesh(std::path::Path::new("tests/data/open_face_choi.obj.gz"))?;
+//! let map = cap::parameterize(&mesh, &cap::ParamOptions::default(), &NoProgress)?;
+//! println!("Z* = {:?}, mean |d_area| = {}", map.report.z_star, map.report.area_distortion.mean_abs);
+//! # Ok::<(), capmesh::Error>(())
+//! ```
+
+pub mod cap;
+pub mod error;
+pub mod flatten;
+pub mod io;
+pub mod linalg;
+pub mod mesh;
+pub mod metrics;
+pub mod omt;
+pub mod progress;
+
+pub use cap::{parameterize, CapMap, Domain, ParamOptions, ParamReport};
+pub use error::{Error, Result};
+pub use mesh::TriMesh;
+pub use progress::{NoProgress, Progress, Stage};

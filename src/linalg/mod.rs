@@ -1,0 +1,8 @@
+//! Linear algebra: the cotangent Laplacian and sparse direct solvers (faer) that keep their
+//! symbolic factorization for reuse.
+
+pub mod laplacian;
+pub mod sparse;
+
+pub use laplacian::{cotangent_weights, CotanWeights};
+pub use sparse::{LuSolver, SolveError, SpdSolver, TripletList};

@@ -1,0 +1,188 @@
+//! Sparse matrices assembled from triplets and direct solvers around faer.
+//!
+//! [`SpdSolver`] keeps the symbolic Cholesky factorization (the fill-reducing ordering and
+//! elimination tree) and reuses it whenever the next matrix has the same sparsity pattern:
+//! the cotangent Laplacian, the Beltrami system and every stretch-energy iteration share one
+//! pattern. [`LuSolver`] does the same for unsymmetric systems.
+
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+
+/// Errors of the sparse direct solvers.
+#[derive(Debug, Clone, thiserror::Error)]
+#[non_exhaustive]
+pub enum SolveError {
+    /// The matrix is not (numerically) symmetric positive definite.
+    #[error("the {what} matrix is not positive definite (the mesh may have degenerate or flipped triangles)")]
+    NotPositiveDefinite {
+        /// Which system.
+        what: &'static str,
+    },
+    /// The matrix is singular.
+    #[error("the {what} matrix is singular")]
+    Singular {
+        /// Which system.
+        what: &'static str,
+    },
+    /// faer could not build the matrix or allocate the factorization.
+    #[error("sparse solver failure for the {what} system: {message}")]
+    Backend {
+        /// Which system.
+        what: &'static str,
+        /// The backend's message.
+        message: String,
+    },
+    /// The solution contains NaN or infinity.
+    #[error("the {what} system produced a non-finite solution")]
+    NonFinite {
+        /// Which system.
+        what: &'static str,
+    },
+}
+
+/// Accumulates `(row, col, value)` entries; duplicates are summed on assembly.
+#[derive(Debug, Clone, Default)]
+pub struct TripletList {
+    n: usize,
+    entries: Vec<Triplet<usize, usize, f64>>,
+}
+
+impl TripletList {
+    /// An empty `n x n` list.
+    pub fn new(n: usize) -> Self {
+        Self { n, entries: Vec::new() }
+    }
+
+    /// An empty `n x n` list with room for `cap` entries.
+    pub fn with_capacity(n: usize, cap: usize) -> Self {
+        Self { n, entries: Vec::with_capacity(cap) }
+    }
+
+    /// Add `value` at `(row, col)`.
+    #[inline]
+    pub fn push(&mut self, row: usize, col: usize, value: f64) {
+        self.entries.push(Triplet::new(row, col, value));
+    }
+
+    /// Matrix dimension.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Assemble into a compressed sparse column matrix.
+    pub fn assemble(&self, what: &'static str) -> Result<SparseColMat<usize, f64>, SolveError> {
+        SparseColMat::try_new_from_triplets(self.n, self.n, &self.entries).map_err(|e| {
+            SolveError::Backend { what, message: format!("{e:?}") }
+        })
+    }
+}
+
+fn same_pattern(a: &SparseColMat<usize, f64>, col_ptr: &[usize], row_idx: &[usize]) -> bool {
+    let s = a.symbolic();
+    s.col_ptr() == col_ptr && s.row_idx() == row_idx
+}
+
+fn check_finite(x: &[f64], what: &'static str) -> Result<(), SolveError> {
+    if x.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(SolveError::NonFinite { what })
+    }
+}
+
+/// Sparse Cholesky solver for symmetric positive definite matrices, reusing the symbolic
+/// factorization across matrices with the same pattern.
+#[derive(Default)]
+pub struct SpdSolver {
+    symbolic: Option<(Vec<usize>, Vec<usize>, SymbolicLlt<usize>)>,
+    numeric: Option<Llt<usize, f64>>,
+    /// How many symbolic factorizations were computed (for reports and tests).
+    pub symbolic_count: usize,
+}
+
+impl SpdSolver {
+    /// A solver with nothing factored yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Factor `a` (both triangles stored); reuses the symbolic part when the pattern matches.
+    pub fn factor(&mut self, a: &SparseColMat<usize, f64>, what: &'static str) -> Result<(), SolveError> {
+        let reuse = matches!(&self.symbolic, Some((cp, ri, _)) if same_pattern(a, cp, ri));
+        if !reuse {
+            let sym = SymbolicLlt::try_new(a.symbolic(), Side::Lower)
+                .map_err(|e| SolveError::Backend { what, message: format!("{e:?}") })?;
+            let s = a.symbolic();
+            self.symbolic = Some((s.col_ptr().to_vec(), s.row_idx().to_vec(), sym));
+            self.symbolic_count += 1;
+        }
+        let sym = self.symbolic.as_ref().map(|s| s.2.clone()).ok_or(SolveError::Singular { what })?;
+        let llt = Llt::try_new_with_symbolic(sym, a.as_ref(), Side::Lower)
+            .map_err(|_| SolveError::NotPositiveDefinite { what })?;
+        self.numeric = Some(llt);
+        Ok(())
+    }
+
+    /// Solve for each right-hand side column (each slice of length n) in place.
+    pub fn solve_in_place(&self, rhs: &mut [Vec<f64>], what: &'static str) -> Result<(), SolveError> {
+        let llt = self.numeric.as_ref().ok_or(SolveError::Singular { what })?;
+        let n = rhs.first().map_or(0, |c| c.len());
+        let k = rhs.len();
+        let mut m = Mat::<f64>::from_fn(n, k, |i, j| rhs[j][i]);
+        llt.solve_in_place(m.as_mut());
+        for (j, col) in rhs.iter_mut().enumerate() {
+            for (i, v) in col.iter_mut().enumerate() {
+                *v = m[(i, j)];
+            }
+            check_finite(col, what)?;
+        }
+        Ok(())
+    }
+}
+
+/// Sparse LU solver for general square matrices, reusing the symbolic factorization.
+#[derive(Default)]
+pub struct LuSolver {
+    symbolic: Option<(Vec<usize>, Vec<usize>, SymbolicLu<usize>)>,
+    numeric: Option<Lu<usize, f64>>,
+}
+
+impl LuSolver {
+    /// A solver with nothing factored yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Factor `a`; reuses the symbolic part when the pattern matches.
+    pub fn factor(&mut self, a: &SparseColMat<usize, f64>, what: &'static str) -> Result<(), SolveError> {
+        let reuse = matches!(&self.symbolic, Some((cp, ri, _)) if same_pattern(a, cp, ri));
+        if !reuse {
+            let sym = SymbolicLu::try_new(a.symbolic())
+                .map_err(|e| SolveError::Backend { what, message: format!("{e:?}") })?;
+            let s = a.symbolic();
+            self.symbolic = Some((s.col_ptr().to_vec(), s.row_idx().to_vec(), sym));
+        }
+        let sym = self.symbolic.as_ref().map(|s| s.2.clone()).ok_or(SolveError::Singular { what })?;
+        let lu = Lu::try_new_with_symbolic(sym, a.as_ref()).map_err(|_| SolveError::Singular { what })?;
+        self.numeric = Some(lu);
+        Ok(())
+    }
+
+    /// Solve for each right-hand side column in place.
+    pub fn solve_in_place(&self, rhs: &mut [Vec<f64>], what: &'static str) -> Result<(), SolveError> {
+        let lu = self.numeric.as_ref().ok_or(SolveError::Singular { what })?;
+        let n = rhs.first().map_or(0, |c| c.len());
+        let k = rhs.len();
+        let mut m = Mat::<f64>::from_fn(n, k, |i, j| rhs[j][i]);
+        lu.solve_in_place(m.as_mut());
+        for (j, col) in rhs.iter_mut().enumerate() {
+            for (i, v) in col.iter_mut().enumerate() {
+                *v = m[(i, j)];
+            }
+            check_finite(col, what)?;
+        }
+        Ok(())
+    }
+}

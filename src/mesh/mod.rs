@@ -1,0 +1,18 @@
+//! Triangle meshes: the [`TriMesh`] type, topology (edges, boundary loops, components, Euler
+//! characteristic), geometry (areas, angles), validation and small repairs, and procedural
+//! shapes used by tests and benchmarks.
+
+pub mod error;
+pub(crate) mod fasthash;
+pub mod geometry;
+pub mod repair;
+pub mod shapes;
+pub mod topology;
+mod trimesh;
+mod unionfind;
+pub mod validate;
+
+pub use error::MeshError;
+pub use topology::Topology;
+pub use trimesh::TriMesh;
+pub use validate::{inspect, validate, MeshSummary, SurfaceKind};

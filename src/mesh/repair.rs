@@ -1,0 +1,234 @@
+//! Small, safe repairs: welding coincident vertices, dropping unreferenced vertices, and
+//! finding zero-area faces.
+//!
+//! Welding uses a uniform grid of cell size `tolerance` (hashing the cells), so it is linear in
+//! the number of vertices. Each grid cell keeps only cluster *representatives*: a vertex within
+//! `tolerance` of a representative joins its cluster, otherwise it becomes a representative.
+//! This bounds the work even when millions of vertices sit on the same spot, and keeps every
+//! merged vertex within `tolerance` of a representative (no unbounded chaining).
+
+use crate::mesh::fasthash::FastMap;
+use crate::mesh::geometry::{cross, dot, norm, sub};
+use crate::mesh::unionfind::UnionFind;
+use crate::mesh::TriMesh;
+
+/// `old_to_new` value of a vertex that was removed (unreferenced after the repair).
+pub const REMOVED: u32 = u32::MAX;
+
+/// Default relative tolerance of [`zero_area_faces`].
+pub const DEFAULT_ZERO_AREA_REL_TOL: f64 = 1e-12;
+
+/// Default welding tolerance relative to the bounding-box diagonal.
+pub const DEFAULT_WELD_REL_TOL: f64 = 1e-9;
+
+/// Result of [`weld_coincident`] (or [`remove_unreferenced`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Welded {
+    /// The repaired mesh.
+    pub mesh: TriMesh,
+    /// For each input vertex, its index in `mesh`, or [`REMOVED`] if it was dropped because no
+    /// face uses it (merged vertices map to the vertex they were merged into).
+    pub old_to_new: Vec<u32>,
+    /// Number of input vertices merged into another vertex.
+    pub merged_vertices: usize,
+    /// Number of faces dropped: faces that became degenerate (a repeated vertex) after merging,
+    /// and faces with an out-of-range vertex index.
+    pub removed_faces: usize,
+    /// Number of (merged) vertices dropped because no face uses them.
+    pub removed_unreferenced: usize,
+}
+
+/// `DEFAULT_WELD_REL_TOL` times the bounding-box diagonal (0 for an empty mesh).
+pub fn default_weld_tolerance(mesh: &TriMesh) -> f64 {
+    DEFAULT_WELD_REL_TOL * mesh.bounding_box_diagonal()
+}
+
+/// Merge vertices closer than `tolerance` (Euclidean distance `<= tolerance`), drop faces that
+/// become degenerate, drop unreferenced vertices. Face order and the relative order of the kept
+/// vertices are preserved; a merged vertex takes the position of the smallest index in its
+/// cluster.
+///
+/// A `tolerance` that is zero, negative or not finite merges only exactly equal positions.
+/// Vertices with non-finite coordinates are never merged. Faces with out-of-range indices are
+/// dropped (counted in `removed_faces`); run [`crate::mesh::validate()`] first to report them.
+pub fn weld_coincident(mesh: &TriMesh, tolerance: f64) -> Welded {
+    let rep = representatives(&mesh.vertices, tolerance);
+    compact(mesh, &rep, true)
+}
+
+/// Number of vertices that [`weld_coincident`] would merge into another vertex with this
+/// `tolerance` (for 14 coincident pairs: 14).
+pub fn coincident_vertices(mesh: &TriMesh, tolerance: f64) -> usize {
+    representatives(&mesh.vertices, tolerance)
+        .iter()
+        .enumerate()
+        .filter(|&(v, &r)| r as usize != v)
+        .count()
+}
+
+/// Drop vertices that no face uses (faces are kept as they are, except faces with an
+/// out-of-range index, which are dropped).
+pub fn remove_unreferenced(mesh: &TriMesh) -> Welded {
+    let rep: Vec<u32> = (0..mesh.n_vertices() as u32).collect();
+    compact(mesh, &rep, false)
+}
+
+/// Indices of faces whose area is at most `rel_tol` times the square of their longest edge
+/// (collinear or coincident corners; the test is scale-invariant). Faces with an out-of-range
+/// index are skipped; faces with non-finite area are included.
+pub fn zero_area_faces(mesh: &TriMesh, rel_tol: f64) -> Vec<usize> {
+    let n = mesh.n_vertices();
+    mesh.faces
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| f.iter().all(|&v| (v as usize) < n))
+        .filter(|(_, f)| {
+            let [a, b, c] = [0, 1, 2].map(|k| mesh.vertices[f[k] as usize]);
+            let (ab, bc, ca) = (sub(b, a), sub(c, b), sub(a, c));
+            let longest2 = dot(ab, ab).max(dot(bc, bc)).max(dot(ca, ca));
+            let area = 0.5 * norm(cross(ab, sub(c, a)));
+            // NaN areas count as zero-area (not `area <= ...`, which is false for NaN).
+            area.partial_cmp(&(rel_tol * longest2)) != Some(std::cmp::Ordering::Greater)
+        })
+        .map(|(i, _)| i)
+        .collect()
+}
+
+/// Grid cell (or exact bit pattern) key of a point.
+fn cell_key(p: [f64; 3], cell: Option<f64>) -> [i64; 3] {
+    match cell {
+        // `as` saturates, so huge ratios cannot overflow; the cell size is bounded below so
+        // that the ratios stay well inside the i64 range anyway.
+        Some(h) => p.map(|x| (x / h).floor() as i64),
+        // +0.0 and -0.0 are equal positions.
+        None => p.map(|x| if x == 0.0 { 0 } else { x.to_bits() as i64 }),
+    }
+}
+
+/// For every vertex, the smallest vertex index of its cluster.
+fn representatives(vertices: &[[f64; 3]], tolerance: f64) -> Vec<u32> {
+    let n = vertices.len().min(u32::MAX as usize);
+    let mut uf = UnionFind::new(n);
+    let exact = !(tolerance > 0.0 && tolerance.is_finite());
+    let max_abs = vertices
+        .iter()
+        .flatten()
+        .filter(|x| x.is_finite())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    // Keep |x / cell| below 2^50 so that cell indices are exact and neighbours do not overflow.
+    let cell = (!exact).then(|| tolerance.max(max_abs * 2f64.powi(-50)));
+    let tol2 = tolerance * tolerance;
+    const NONE: u32 = u32::MAX;
+    let mut head: FastMap<[i64; 3], u32> = FastMap::default();
+    head.reserve(n);
+    let mut next_rep = vec![NONE; n];
+
+    for v in 0..n {
+        let p = vertices[v];
+        if !p.iter().all(|x| x.is_finite()) {
+            continue;
+        }
+        let key = cell_key(p, cell);
+        let mut merged = false;
+        if exact {
+            if let Some(&r) = head.get(&key) {
+                uf.union(v as u32, r);
+                merged = true;
+            }
+        } else {
+            for dx in -1i64..=1 {
+                for dy in -1i64..=1 {
+                    for dz in -1i64..=1 {
+                        let k = [
+                            key[0].saturating_add(dx),
+                            key[1].saturating_add(dy),
+                            key[2].saturating_add(dz),
+                        ];
+                        let mut r = head.get(&k).copied().unwrap_or(NONE);
+                        while r != NONE {
+                            let d = sub(p, vertices[r as usize]);
+                            if dot(d, d) <= tol2 {
+                                uf.union(v as u32, r);
+                                merged = true;
+                            }
+                            r = next_rep[r as usize];
+                        }
+                    }
+                }
+            }
+        }
+        if !merged {
+            let old = head.insert(key, v as u32).unwrap_or(NONE);
+            next_rep[v] = old;
+        }
+    }
+
+    let mut min_of_root = vec![NONE; n];
+    let mut rep = Vec::with_capacity(vertices.len());
+    for v in 0..n {
+        let r = uf.find(v as u32) as usize;
+        if min_of_root[r] == NONE {
+            min_of_root[r] = v as u32;
+        }
+        rep.push(min_of_root[r]);
+    }
+    // Vertices beyond u32 range cannot be referenced by a face; keep them as themselves.
+    rep.extend((n..vertices.len()).map(|_| NONE));
+    rep
+}
+
+/// Apply a vertex-to-representative map: remap faces (dropping degenerate ones if asked, and
+/// always those with out-of-range indices), then drop unreferenced vertices.
+fn compact(mesh: &TriMesh, rep: &[u32], drop_degenerate: bool) -> Welded {
+    let n = mesh.n_vertices();
+    let merged_vertices = rep
+        .iter()
+        .enumerate()
+        .filter(|&(v, &r)| r != REMOVED && r as usize != v)
+        .count();
+    let mut faces = Vec::with_capacity(mesh.n_faces());
+    let mut removed_faces = 0;
+    let mut used = vec![false; n];
+    for face in &mesh.faces {
+        let mapped = face.map(|v| rep.get(v as usize).copied().unwrap_or(REMOVED));
+        let [a, b, c] = mapped;
+        let bad_index = mapped.iter().any(|&v| v == REMOVED || v as usize >= n);
+        if bad_index || (drop_degenerate && (a == b || b == c || a == c)) {
+            removed_faces += 1;
+            continue;
+        }
+        for v in mapped {
+            used[v as usize] = true;
+        }
+        faces.push(mapped);
+    }
+    let mut new_index = vec![REMOVED; n];
+    let mut vertices = Vec::new();
+    let mut removed_unreferenced = 0;
+    for v in 0..n {
+        if rep[v] as usize == v {
+            if used[v] {
+                new_index[v] = vertices.len() as u32;
+                vertices.push(mesh.vertices[v]);
+            } else {
+                removed_unreferenced += 1;
+            }
+        }
+    }
+    let old_to_new: Vec<u32> = (0..n)
+        .map(|v| match rep[v] {
+            REMOVED => REMOVED,
+            r => new_index[r as usize],
+        })
+        .collect();
+    for face in &mut faces {
+        *face = face.map(|v| new_index[v as usize]);
+    }
+    Welded {
+        mesh: TriMesh::new(vertices, faces),
+        old_to_new,
+        merged_vertices,
+        removed_faces,
+        removed_unreferenced,
+    }
+}

@@ -1,0 +1,465 @@
+//! Combinatorial topology of a triangle mesh: edges, boundary loops, connected components,
+//! Euler characteristic and genus, plus the adjacency helpers the numerical code needs.
+//!
+//! Edges are found by bucketing half-edges by their smaller end vertex (a counting sort, linear
+//! in the mesh size, no hashing), so this stays fast and lean for meshes with millions of faces.
+
+use crate::mesh::error::MeshError;
+use crate::mesh::unionfind::UnionFind;
+use crate::mesh::TriMesh;
+
+/// Largest number of faces whose half-edges (`3 * face + k`) can be numbered with `u32`.
+pub const MAX_FACES: usize = (u32::MAX / 3) as usize;
+
+/// Topological summary of a manifold, consistently oriented triangle mesh.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Topology {
+    /// Number of vertices in the mesh (including unreferenced ones).
+    pub n_vertices: usize,
+    /// Number of faces.
+    pub n_faces: usize,
+    /// Number of distinct (undirected) edges.
+    pub n_edges: usize,
+    /// Boundary loops. Each follows the boundary edges in the direction they have in their
+    /// faces (face `(a, b, c)` with boundary edge `a -> b` gives `..., a, b, ...`), so the
+    /// boundary of a disk with counter-clockwise faces runs counter-clockwise. Each loop starts
+    /// at its smallest vertex index; loops are sorted by that vertex.
+    pub boundary_loops: Vec<Vec<u32>>,
+    /// Number of connected components (faces sharing a vertex are connected).
+    pub n_components: usize,
+    /// `V - E + F`, counting only vertices used by some face.
+    pub euler_characteristic: i64,
+}
+
+/// An undirected edge `a < b` with its (at most two) incident faces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Edge {
+    /// Smaller vertex index.
+    pub a: u32,
+    /// Larger vertex index.
+    pub b: u32,
+    /// The face that contains the directed edge `a -> b`, if any.
+    pub left: Option<u32>,
+    /// The face that contains the directed edge `b -> a`, if any.
+    pub right: Option<u32>,
+}
+
+impl Edge {
+    /// `true` when only one face uses this edge.
+    pub fn is_boundary(&self) -> bool {
+        self.left.is_none() || self.right.is_none()
+    }
+}
+
+impl Topology {
+    /// Compute the topology, failing on anything that is not an oriented 2-manifold (with or
+    /// without boundary): [`MeshError::Empty`], [`MeshError::IndexOutOfRange`],
+    /// [`MeshError::DegenerateFace`], [`MeshError::DuplicateFace`],
+    /// [`MeshError::NonManifoldEdge`], [`MeshError::InconsistentOrientation`],
+    /// [`MeshError::NonManifoldVertex`], [`MeshError::TooLarge`].
+    pub fn build(mesh: &TriMesh) -> Result<Topology, MeshError> {
+        check_not_empty(mesh)?;
+        check_indices(mesh)?;
+        check_degenerate(mesh)?;
+        check_duplicates(mesh)?;
+        let edges = edge_faces(mesh)?;
+        check_vertex_fans(mesh, &edges)?;
+
+        let boundary_loops = trace_boundary_loops(mesh.n_vertices(), &edges);
+        let (n_components, n_referenced) = components(mesh);
+        let euler_characteristic = n_referenced as i64 - edges.len() as i64 + mesh.n_faces() as i64;
+        Ok(Topology {
+            n_vertices: mesh.n_vertices(),
+            n_faces: mesh.n_faces(),
+            n_edges: edges.len(),
+            boundary_loops,
+            n_components,
+            euler_characteristic,
+        })
+    }
+
+    /// Genus of a single connected (orientable) component: `(2 - chi - loops) / 2`.
+    /// `None` when there are several components or the formula does not give a non-negative
+    /// integer.
+    pub fn genus(&self) -> Option<i64> {
+        if self.n_components != 1 {
+            return None;
+        }
+        let twice = 2 - self.euler_characteristic - self.boundary_loops.len() as i64;
+        (twice >= 0 && twice % 2 == 0).then_some(twice / 2)
+    }
+
+    /// `true` when the mesh has no boundary.
+    pub fn is_closed(&self) -> bool {
+        self.boundary_loops.is_empty()
+    }
+}
+
+/// [`MeshError::Empty`] when there are no vertices or no faces.
+pub(crate) fn check_not_empty(mesh: &TriMesh) -> Result<(), MeshError> {
+    if mesh.vertices.is_empty() || mesh.faces.is_empty() {
+        return Err(MeshError::Empty {
+            n_vertices: mesh.n_vertices(),
+            n_faces: mesh.n_faces(),
+        });
+    }
+    if mesh.n_faces() > MAX_FACES {
+        return Err(MeshError::TooLarge {
+            n_faces: mesh.n_faces(),
+            max: MAX_FACES,
+        });
+    }
+    Ok(())
+}
+
+/// [`MeshError::IndexOutOfRange`] for the first face with an invalid vertex index.
+pub(crate) fn check_indices(mesh: &TriMesh) -> Result<(), MeshError> {
+    let n = mesh.n_vertices();
+    for (f, face) in mesh.faces.iter().enumerate() {
+        for &v in face {
+            if v as usize >= n {
+                return Err(MeshError::IndexOutOfRange {
+                    face: f,
+                    index: v,
+                    n_vertices: n,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// [`MeshError::DegenerateFace`] for the first face with a repeated vertex.
+pub(crate) fn check_degenerate(mesh: &TriMesh) -> Result<(), MeshError> {
+    for (f, &[a, b, c]) in mesh.faces.iter().enumerate() {
+        if a == b || b == c || a == c {
+            return Err(MeshError::DegenerateFace {
+                face: f,
+                vertices: [a, b, c],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// [`MeshError::DuplicateFace`] for the duplicate with the smallest face index.
+pub(crate) fn check_duplicates(mesh: &TriMesh) -> Result<(), MeshError> {
+    let mut keyed: Vec<([u32; 3], u32)> = mesh
+        .faces
+        .iter()
+        .enumerate()
+        .map(|(f, face)| {
+            let mut k = *face;
+            k.sort_unstable();
+            (k, f as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    // (later face, first face) with the smallest later face over all groups of equal faces.
+    let mut worst: Option<(usize, usize)> = None;
+    let mut i = 0;
+    while i < keyed.len() {
+        let mut j = i + 1;
+        while j < keyed.len() && keyed[j].0 == keyed[i].0 {
+            j += 1;
+        }
+        if j - i >= 2 {
+            let (first, later) = (keyed[i].1 as usize, keyed[i + 1].1 as usize);
+            if worst.map_or(true, |(f, _)| later < f) {
+                worst = Some((later, first));
+            }
+        }
+        i = j;
+    }
+    match worst {
+        Some((face, first)) => Err(MeshError::DuplicateFace { face, first }),
+        None => Ok(()),
+    }
+}
+
+/// Half-edges grouped by their smaller end vertex. Half-edge `h = 3 f + k` runs from
+/// `faces[f][k]` to `faces[f][(k + 1) % 3]`. Faces with an out-of-range index and edges from a
+/// vertex to itself are skipped.
+struct HalfEdgeBuckets {
+    /// `start[v]..start[v + 1]` indexes `items` for vertex `v`.
+    start: Vec<usize>,
+    /// `(other end vertex, half-edge id)`, sorted within each bucket.
+    items: Vec<(u32, u32)>,
+}
+
+fn face_in_range(face: &[u32; 3], n: usize) -> bool {
+    face.iter().all(|&v| (v as usize) < n)
+}
+
+impl HalfEdgeBuckets {
+    fn new(mesh: &TriMesh) -> Self {
+        let n = mesh.n_vertices();
+        let faces = &mesh.faces[..mesh.n_faces().min(MAX_FACES)];
+        let mut start = vec![0usize; n + 1];
+        for face in faces.iter().filter(|f| face_in_range(f, n)) {
+            for k in 0..3 {
+                let (a, b) = (face[k], face[(k + 1) % 3]);
+                if a != b {
+                    start[a.min(b) as usize + 1] += 1;
+                }
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut items = vec![(0u32, 0u32); start[n]];
+        for (f, face) in faces.iter().enumerate() {
+            if !face_in_range(face, n) {
+                continue;
+            }
+            for k in 0..3 {
+                let (a, b) = (face[k], face[(k + 1) % 3]);
+                if a != b {
+                    let slot = &mut fill[a.min(b) as usize];
+                    items[*slot] = (a.max(b), (3 * f + k) as u32);
+                    *slot += 1;
+                }
+            }
+        }
+        for v in 0..n {
+            items[start[v]..start[v + 1]].sort_unstable();
+        }
+        Self { start, items }
+    }
+
+    /// Calls `visit(a, b, half_edges)` for every undirected edge `a < b`, in sorted order.
+    fn for_each_edge<E>(
+        &self,
+        mut visit: impl FnMut(u32, u32, &[(u32, u32)]) -> Result<(), E>,
+    ) -> Result<(), E> {
+        for a in 0..self.start.len().saturating_sub(1) {
+            let bucket = &self.items[self.start[a]..self.start[a + 1]];
+            let mut i = 0;
+            while i < bucket.len() {
+                let b = bucket[i].0;
+                let mut j = i + 1;
+                while j < bucket.len() && bucket[j].0 == b {
+                    j += 1;
+                }
+                visit(a as u32, b, &bucket[i..j])?;
+                i = j;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Start vertex of half-edge `h`.
+#[inline]
+fn tail(faces: &[[u32; 3]], h: u32) -> u32 {
+    faces[h as usize / 3][h as usize % 3]
+}
+
+/// Every edge with its incident faces, sorted by `(a, b)`.
+///
+/// Fails with [`MeshError::NonManifoldEdge`] when an edge has more than two faces and with
+/// [`MeshError::InconsistentOrientation`] when two faces use it in the same direction. Faces
+/// with out-of-range indices are reported first ([`MeshError::IndexOutOfRange`]), faces with a
+/// repeated vertex next ([`MeshError::DegenerateFace`]).
+pub fn edge_faces(mesh: &TriMesh) -> Result<Vec<Edge>, MeshError> {
+    check_indices(mesh)?;
+    check_degenerate(mesh)?;
+    if mesh.n_faces() > MAX_FACES {
+        return Err(MeshError::TooLarge {
+            n_faces: mesh.n_faces(),
+            max: MAX_FACES,
+        });
+    }
+    let buckets = HalfEdgeBuckets::new(mesh);
+    let faces = &mesh.faces;
+    let mut edges = Vec::with_capacity(buckets.items.len() / 2 + 1);
+    buckets.for_each_edge(|a, b, hs| {
+        let mut edge = Edge {
+            a,
+            b,
+            left: None,
+            right: None,
+        };
+        if hs.len() > 2 {
+            return Err(MeshError::NonManifoldEdge {
+                a,
+                b,
+                faces: hs.len(),
+            });
+        }
+        for &(_, h) in hs {
+            let f = h / 3;
+            let slot = if tail(faces, h) == a {
+                &mut edge.left
+            } else {
+                &mut edge.right
+            };
+            if let Some(other) = *slot {
+                let (from, to) = if tail(faces, h) == a { (a, b) } else { (b, a) };
+                return Err(MeshError::InconsistentOrientation {
+                    a: from,
+                    b: to,
+                    faces: [other as usize, f as usize],
+                });
+            }
+            *slot = Some(f);
+        }
+        edges.push(edge);
+        Ok(())
+    })?;
+    Ok(edges)
+}
+
+/// Position of vertex `v` in face `f` (0, 1 or 2).
+#[inline]
+fn corner_of(faces: &[[u32; 3]], f: u32, v: u32) -> u32 {
+    let face = faces[f as usize];
+    let k = face.iter().position(|&x| x == v).unwrap_or(0);
+    3 * f + k as u32
+}
+
+/// [`MeshError::NonManifoldVertex`] for the smallest vertex whose face corners form more than
+/// one fan (corners are joined across the interior edges at that vertex).
+fn check_vertex_fans(mesh: &TriMesh, edges: &[Edge]) -> Result<(), MeshError> {
+    let faces = &mesh.faces;
+    let mut corners = UnionFind::new(3 * faces.len());
+    for e in edges {
+        if let (Some(l), Some(r)) = (e.left, e.right) {
+            for v in [e.a, e.b] {
+                corners.union(corner_of(faces, l, v), corner_of(faces, r, v));
+            }
+        }
+    }
+    const UNSET: u32 = u32::MAX;
+    let mut first_root = vec![UNSET; mesh.n_vertices()];
+    let mut bad: Option<u32> = None;
+    for (f, face) in faces.iter().enumerate() {
+        for (k, &v) in face.iter().enumerate() {
+            let root = corners.find((3 * f + k) as u32);
+            let slot = &mut first_root[v as usize];
+            if *slot == UNSET {
+                *slot = root;
+            } else if *slot != root && bad.map_or(true, |b| v < b) {
+                bad = Some(v);
+            }
+        }
+    }
+    let Some(vertex) = bad else { return Ok(()) };
+    let mut roots: Vec<u32> = Vec::new();
+    for (f, face) in faces.iter().enumerate() {
+        for (k, &v) in face.iter().enumerate() {
+            if v == vertex {
+                roots.push(corners.find((3 * f + k) as u32));
+            }
+        }
+    }
+    roots.sort_unstable();
+    roots.dedup();
+    Err(MeshError::NonManifoldVertex {
+        vertex,
+        fans: roots.len(),
+    })
+}
+
+/// Boundary loops of a manifold, oriented mesh (see [`Topology::boundary_loops`]).
+fn trace_boundary_loops(n_vertices: usize, edges: &[Edge]) -> Vec<Vec<u32>> {
+    const NONE: u32 = u32::MAX;
+    let mut next = vec![NONE; n_vertices];
+    for e in edges {
+        match (e.left, e.right) {
+            (Some(_), None) => next[e.a as usize] = e.b,
+            (None, Some(_)) => next[e.b as usize] = e.a,
+            _ => {}
+        }
+    }
+    let mut visited = vec![false; n_vertices];
+    let mut loops = Vec::new();
+    for start in 0..n_vertices {
+        if next[start] == NONE || visited[start] {
+            continue;
+        }
+        let mut lp = Vec::new();
+        let mut v = start as u32;
+        while v != NONE && !visited[v as usize] {
+            visited[v as usize] = true;
+            lp.push(v);
+            v = next[v as usize];
+        }
+        loops.push(lp);
+    }
+    loops
+}
+
+/// `(number of components, number of referenced vertices)`; components are unions of faces
+/// that share a vertex. Faces with out-of-range indices are ignored.
+fn components(mesh: &TriMesh) -> (usize, usize) {
+    let n = mesh.n_vertices();
+    let mut uf = UnionFind::new(n);
+    let mut used = vec![false; n];
+    for face in mesh.faces.iter().filter(|f| face_in_range(f, n)) {
+        uf.union(face[0], face[1]);
+        uf.union(face[1], face[2]);
+        for &v in face {
+            used[v as usize] = true;
+        }
+    }
+    let mut count = 0;
+    let mut referenced = 0;
+    for (v, &is_used) in used.iter().enumerate() {
+        if is_used {
+            referenced += 1;
+            if uf.find(v as u32) == v as u32 {
+                count += 1;
+            }
+        }
+    }
+    (count, referenced)
+}
+
+/// Sorted, de-duplicated neighbours of every vertex (vertices joined by a face edge).
+/// Faces with out-of-range indices are ignored.
+pub fn vertex_neighbors(mesh: &TriMesh) -> Vec<Vec<u32>> {
+    let n = mesh.n_vertices();
+    let mut count = vec![0usize; n];
+    for face in mesh.faces.iter().filter(|f| face_in_range(f, n)) {
+        for k in 0..3 {
+            let (a, b) = (face[k], face[(k + 1) % 3]);
+            if a != b {
+                count[a as usize] += 1;
+                count[b as usize] += 1;
+            }
+        }
+    }
+    let mut out: Vec<Vec<u32>> = count.iter().map(|&c| Vec::with_capacity(c)).collect();
+    for face in mesh.faces.iter().filter(|f| face_in_range(f, n)) {
+        for k in 0..3 {
+            let (a, b) = (face[k], face[(k + 1) % 3]);
+            if a != b {
+                out[a as usize].push(b);
+                out[b as usize].push(a);
+            }
+        }
+    }
+    for list in &mut out {
+        list.sort_unstable();
+        list.dedup();
+        list.shrink_to_fit();
+    }
+    out
+}
+
+/// `true` for every vertex on an edge that belongs to exactly one face.
+/// Faces with out-of-range indices are ignored; no manifoldness is required.
+pub fn is_boundary_vertex(mesh: &TriMesh) -> Vec<bool> {
+    let mut mask = vec![false; mesh.n_vertices()];
+    let buckets = HalfEdgeBuckets::new(mesh);
+    let _ = buckets.for_each_edge::<()>(|a, b, hs| {
+        if hs.len() == 1 {
+            mask[a as usize] = true;
+            mask[b as usize] = true;
+        }
+        Ok(())
+    });
+    mask
+}

@@ -1,0 +1,151 @@
+//! Distortion of a parameterization (paper Sec. 4.1): per-face area distortion
+//! `d_area(T) = ln( (Area f(T) / sum Area f) / (Area T / sum Area) )` and per-corner angle
+//! distortion `d_angle = angle in f(T) - angle in T` (radians), plus the Beltrami coefficient
+//! `|mu|` of each face's affine map (Sec. 2.1), whose area-weighted mean square is the radius
+//! search objective (Eq. 12).
+
+use crate::mesh::geometry::{cross, dot, norm, sub, triangle_angles};
+
+/// Summary statistics of a distortion measure.
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct Stats {
+    /// Mean of the absolute values.
+    pub mean_abs: f64,
+    /// Mean of the values.
+    pub mean: f64,
+    /// Standard deviation of the values.
+    pub std: f64,
+    /// Largest absolute value.
+    pub max_abs: f64,
+    /// How many values were measured.
+    pub count: usize,
+}
+
+impl Stats {
+    /// Statistics of the finite values of `values`.
+    pub fn of(values: impl IntoIterator<Item = f64>) -> Self {
+        let (mut n, mut s, mut sa, mut s2, mut mx) = (0usize, 0.0, 0.0, 0.0, 0.0f64);
+        for v in values.into_iter().filter(|v| v.is_finite()) {
+            n += 1;
+            s += v;
+            sa += v.abs();
+            s2 += v * v;
+            mx = mx.max(v.abs());
+        }
+        if n == 0 {
+            return Self::default();
+        }
+        let nf = n as f64;
+        let mean = s / nf;
+        Self { mean_abs: sa / nf, mean, std: (s2 / nf - mean * mean).max(0.0).sqrt(), max_abs: mx, count: n }
+    }
+}
+
+/// Area distortion of each face between `source` and `target` positions of the same faces.
+/// Faces of zero area on either side give `NaN` (left out of [`Stats`]).
+pub fn area_distortion(source: &[[f64; 3]], target: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<f64> {
+    let area = |p: &[[f64; 3]], f: &[u32; 3]| {
+        0.5 * norm(cross(sub(p[f[1] as usize], p[f[0] as usize]), sub(p[f[2] as usize], p[f[0] as usize])))
+    };
+    let a_src: Vec<f64> = faces.iter().map(|f| area(source, f)).collect();
+    let a_tgt: Vec<f64> = faces.iter().map(|f| area(target, f)).collect();
+    let s_src: f64 = a_src.iter().sum();
+    let s_tgt: f64 = a_tgt.iter().sum();
+    a_src
+        .iter()
+        .zip(&a_tgt)
+        .map(|(s, t)| if *s > 0.0 && *t > 0.0 { ((t / s_tgt) / (s / s_src)).ln() } else { f64::NAN })
+        .collect()
+}
+
+/// Angle distortion of every corner (three per face, in face order), radians.
+pub fn angle_distortion(source: &[[f64; 3]], target: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(3 * faces.len());
+    for f in faces {
+        let [a, b, c] = f.map(|v| v as usize);
+        let s = triangle_angles(source[a], source[b], source[c]);
+        let t = triangle_angles(target[a], target[b], target[c]);
+        for k in 0..3 {
+            out.push(t[k] - s[k]);
+        }
+    }
+    out
+}
+
+/// `|mu|` of the affine map from the surface triangle `p` onto the planar triangle `q`.
+/// `NaN` when either triangle is degenerate.
+pub fn beltrami_abs(p: [[f64; 3]; 3], q: [[f64; 2]; 3]) -> f64 {
+    let e1 = sub(p[1], p[0]);
+    let e2 = sub(p[2], p[0]);
+    let l1 = norm(e1);
+    let nrm = cross(e1, e2);
+    let area2 = norm(nrm);
+    if l1 == 0.0 || area2 == 0.0 {
+        return f64::NAN;
+    }
+    // Local frame: P1 = (l1, 0), P2 = (x2, y2).
+    let x2 = dot(e2, e1) / l1;
+    let y2 = area2 / l1;
+    // Jacobian J = [q1 - q0, q2 - q0] * inv([[l1, x2], [0, y2]]).
+    let (u1, v1) = (q[1][0] - q[0][0], q[1][1] - q[0][1]);
+    let (u2, v2) = (q[2][0] - q[0][0], q[2][1] - q[0][1]);
+    let a = u1 / l1; // du/dx
+    let b = (u2 - a * x2) / y2; // du/dy
+    let c = v1 / l1; // dv/dx
+    let d = (v2 - c * x2) / y2; // dv/dy
+    // f_z = ((a + d) + i (c - b)) / 2, f_zbar = ((a - d) + i (c + b)) / 2.
+    let fz = ((a + d).powi(2) + (c - b).powi(2)).sqrt();
+    let fzb = ((a - d).powi(2) + (c + b).powi(2)).sqrt();
+    if fz == 0.0 {
+        return f64::NAN;
+    }
+    fzb / fz
+}
+
+/// The radius-search objective: the mean of `|mu|^2` weighted by planar face area
+/// (the paper's Eq. 12 normalised by the domain's area, so it does not favour small disks).
+pub fn conformal_energy(surface: &[[f64; 3]], plane: &[[f64; 2]], faces: &[[u32; 3]]) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    for f in faces {
+        let [a, b, c] = f.map(|v| v as usize);
+        let q = [plane[a], plane[b], plane[c]];
+        let area = crate::mesh::geometry::signed_area_2d(q[0], q[1], q[2]).abs();
+        let mu = beltrami_abs([surface[a], surface[b], surface[c]], q);
+        if mu.is_finite() {
+            num += mu * mu * area;
+            den += area;
+        }
+    }
+    if den > 0.0 {
+        num / den
+    } else {
+        f64::INFINITY
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn similarity_has_zero_mu_and_shear_has_known_mu() {
+        let p = [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.3, 0.8, 1.0]];
+        // Rotation + scaling: conformal.
+        let (cs, sn, s) = (0.6f64, 0.8f64, 2.5f64);
+        let q = p.map(|x| [s * (cs * x[0] - sn * x[1]), s * (sn * x[0] + cs * x[1])]);
+        assert!(beltrami_abs(p, q) < 1e-12);
+        // Stretch by k along x: mu = (k - 1) / (k + 1).
+        let k = 3.0;
+        let q = p.map(|x| [k * x[0], x[1]]);
+        assert!((beltrami_abs(p, q) - (k - 1.0) / (k + 1.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn identity_has_no_distortion() {
+        let v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.2]];
+        let f = vec![[0, 1, 2], [1, 3, 2]];
+        let scaled: Vec<[f64; 3]> = v.iter().map(|p| [3.0 * p[0], 3.0 * p[1], 3.0 * p[2]]).collect();
+        assert!(Stats::of(area_distortion(&v, &scaled, &f)).max_abs < 1e-12);
+        assert!(Stats::of(angle_distortion(&v, &scaled, &f)).max_abs < 1e-12);
+    }
+}

@@ -1,0 +1,273 @@
+//! Power cells clipped to the disk of radius `r`, and the integrals the Newton method needs:
+//! cell masses, first moments (for the sigma-weighted centroids) and the Hessian entries
+//! `d m_i / d w_j = -int_{cell_i ∩ cell_j} sigma ds / (2 |y_i - y_j|)`
+//! (Kitagawa, Mérigot and Thibert 2019; the paper's Eq. 8 energy in weight form).
+//!
+//! Geometry traversal is apart from the integrand: [`cell_boundary`] walks the dual polygon of
+//! one site and clips it to the disk; [`integrate_cell`] hands each piece (a straight edge or
+//! an arc of the circle) to a [`RadialDensity`].
+
+use super::density::RadialDensity;
+use super::triangulation::{RegularTriangulation, NONE};
+use rayon::prelude::*;
+
+/// Integrals of every cell, and the off-diagonal Hessian entries per triangulation edge.
+#[derive(Debug, Clone, Default)]
+pub struct CellIntegrals {
+    /// sigma-mass of each cell.
+    pub mass: Vec<f64>,
+    /// First moment `int x sigma` of each cell.
+    pub moment: Vec<[f64; 2]>,
+    /// `(i, j, c)` with `i < j` and `c = int sigma ds / (2 |y_i - y_j|)` over their common edge.
+    pub edges: Vec<(u32, u32, f64)>,
+}
+
+impl CellIntegrals {
+    /// sigma-weighted centroid of cell `i` (`None` for an empty cell).
+    pub fn centroid(&self, i: usize) -> Option<[f64; 2]> {
+        let m = self.mass[i];
+        (m > 0.0).then(|| [self.moment[i][0] / m, self.moment[i][1] / m])
+    }
+}
+
+/// The portion of segment `a -> b` inside the disk of radius `r`, in the direction `a -> b`,
+/// with flags telling whether each end lies on the circle. Roots are computed from the
+/// endpoint nearer the origin so far-away power centers keep the clipped points accurate.
+pub fn clip_segment(a: [f64; 2], b: [f64; 2], r: f64) -> Option<([f64; 2], [f64; 2], bool, bool)> {
+    let na = a[0] * a[0] + a[1] * a[1];
+    let nb = b[0] * b[0] + b[1] * b[1];
+    let r2 = r * r;
+    if na <= r2 && nb <= r2 {
+        return Some((a, b, false, false));
+    }
+    let (p, q, reversed) = if na <= nb { (a, b, false) } else { (b, a, true) };
+    let e = [q[0] - p[0], q[1] - p[1]];
+    let aa = e[0] * e[0] + e[1] * e[1];
+    if aa == 0.0 {
+        return None;
+    }
+    let bb = p[0] * e[0] + p[1] * e[1];
+    let cc = p[0] * p[0] + p[1] * p[1] - r2;
+    let disc = bb * bb - aa * cc;
+    if disc <= 0.0 {
+        return None;
+    }
+    // Stable roots of aa s^2 + 2 bb s + cc = 0; qq != 0 because disc > 0.
+    let sgn = if bb >= 0.0 { 1.0 } else { -1.0 };
+    let qq = -(bb + sgn * disc.sqrt());
+    let (mut s1, mut s2) = (qq / aa, cc / qq);
+    if s1 > s2 {
+        std::mem::swap(&mut s1, &mut s2);
+    }
+    let lo = s1.max(0.0);
+    let hi = s2.min(1.0);
+    if lo >= hi {
+        return None;
+    }
+    let at = |s: f64| if s == 1.0 { q } else if s == 0.0 { p } else { [p[0] + s * e[0], p[1] + s * e[1]] };
+    let (x_lo, x_hi) = (at(lo), at(hi));
+    let (lo_on, hi_on) = (lo > 0.0, hi < 1.0);
+    Some(if reversed { (x_hi, x_lo, hi_on, lo_on) } else { (x_lo, x_hi, lo_on, hi_on) })
+}
+
+/// One boundary piece of a clipped cell.
+#[derive(Debug, Clone, Copy)]
+pub enum Piece {
+    /// A straight edge shared with site `label` ([`NONE`] for a far closing edge).
+    Segment {
+        /// Start point.
+        a: [f64; 2],
+        /// End point.
+        b: [f64; 2],
+        /// The neighbouring site.
+        label: u32,
+    },
+    /// An arc of the circle of radius `r`, counter-clockwise from angle `alpha` to `beta`.
+    Arc {
+        /// Start angle.
+        alpha: f64,
+        /// End angle (`>= alpha`).
+        beta: f64,
+    },
+}
+
+/// The dual polygon of site `i` (counter-clockwise vertices with the neighbour label of the
+/// edge that starts at each vertex). Hull sites get unbounded cells closed by far points.
+pub fn dual_polygon(tri: &RegularTriangulation, centers: &[[f64; 2]], i: usize, far: f64) -> (Vec<[f64; 2]>, Vec<u32>) {
+    let t0 = tri.vertex_triangle[i];
+    let mut pts = Vec::with_capacity(8);
+    let mut labels = Vec::with_capacity(8);
+    if t0 == NONE {
+        return (pts, labels);
+    }
+    let corner = |t: usize| tri.triangles[t].iter().position(|&v| v as usize == i).unwrap_or(0);
+    // Rotate clockwise to the hull, if the site is on it.
+    let mut t = t0 as usize;
+    let mut on_hull = false;
+    let n_guard = tri.triangles.len() + 1;
+    for _ in 0..n_guard {
+        let k = corner(t);
+        let cw = tri.neighbors[t][(k + 2) % 3];
+        if cw == NONE {
+            on_hull = true;
+            break;
+        }
+        t = cw as usize;
+        if t == t0 as usize {
+            break;
+        }
+    }
+    let start = t;
+    let yi = tri.sites[i];
+    let first_a = tri.triangles[start][(corner(start) + 1) % 3];
+    for _ in 0..n_guard {
+        let k = corner(t);
+        let b = tri.triangles[t][(k + 2) % 3];
+        pts.push(centers[t]);
+        labels.push(b);
+        let next = tri.neighbors[t][(k + 1) % 3];
+        if next == NONE || next as usize == start {
+            if next == NONE && on_hull {
+                // Ray of the hull edge (b -> i), then a far closing point, then the ray of (i -> first_a).
+                let pb = tri.sites[b as usize];
+                let nb = unit([yi[1] - pb[1], -(yi[0] - pb[0])]);
+                let pa = tri.sites[first_a as usize];
+                let na = unit([pa[1] - yi[1], -(pa[0] - yi[0])]);
+                let c_end = centers[t];
+                let c_start = centers[start];
+                let fb = [c_end[0] + far * nb[0], c_end[1] + far * nb[1]];
+                let fa = [c_start[0] + far * na[0], c_start[1] + far * na[1]];
+                let mid = unit([na[0] + nb[0], na[1] + nb[1]]);
+                let fm = [yi[0] + 2.0 * far * mid[0], yi[1] + 2.0 * far * mid[1]];
+                pts.push(fb);
+                labels.push(NONE);
+                pts.push(fm);
+                labels.push(NONE);
+                pts.push(fa);
+                labels.push(first_a);
+            }
+            break;
+        }
+        t = next as usize;
+    }
+    (pts, labels)
+}
+
+fn unit(v: [f64; 2]) -> [f64; 2] {
+    let n = (v[0] * v[0] + v[1] * v[1]).sqrt();
+    if n == 0.0 {
+        [0.0, 0.0]
+    } else {
+        [v[0] / n, v[1] / n]
+    }
+}
+
+/// Clip a convex counter-clockwise polygon to the disk of radius `r` and return its boundary
+/// pieces. An empty result means the cell misses the disk, unless `full` is true (the disk
+/// lies entirely inside the polygon).
+pub fn clip_to_disk(pts: &[[f64; 2]], labels: &[u32], r: f64) -> (Vec<Piece>, bool) {
+    let n = pts.len();
+    let mut segs: Vec<([f64; 2], [f64; 2], u32, bool, bool)> = Vec::with_capacity(n);
+    for k in 0..n {
+        if let Some((a, b, enters, exits)) = clip_segment(pts[k], pts[(k + 1) % n], r) {
+            segs.push((a, b, labels[k], enters, exits));
+        }
+    }
+    if segs.is_empty() {
+        // The disk is inside the polygon iff the origin is on the left of every edge.
+        let full = n >= 3
+            && (0..n).all(|k| {
+                let (a, b) = (pts[k], pts[(k + 1) % n]);
+                (b[0] - a[0]) * (-a[1]) - (b[1] - a[1]) * (-a[0]) >= 0.0
+            });
+        return (Vec::new(), full);
+    }
+    let mut pieces = Vec::with_capacity(segs.len() * 2);
+    let m = segs.len();
+    for k in 0..m {
+        let (a, b, label, _, exits) = segs[k];
+        pieces.push(Piece::Segment { a, b, label });
+        if exits {
+            // Find the next segment that enters; the arc runs counter-clockwise to it.
+            let (na, _, _, enters, _) = segs[(k + 1) % m];
+            if enters {
+                let alpha = b[1].atan2(b[0]);
+                let mut beta = na[1].atan2(na[0]);
+                while beta < alpha {
+                    beta += 2.0 * std::f64::consts::PI;
+                }
+                pieces.push(Piece::Arc { alpha, beta });
+            }
+        }
+    }
+    (pieces, false)
+}
+
+/// Mass and first moment of a clipped cell.
+pub fn integrate_cell(pieces: &[Piece], full: bool, r: f64, density: &dyn RadialDensity) -> (f64, [f64; 2]) {
+    if full {
+        return (density.disk_mass(r), [0.0, 0.0]);
+    }
+    let mut mass = 0.0;
+    let mut mom = [0.0, 0.0];
+    for p in pieces {
+        match *p {
+            Piece::Segment { a, b, .. } => {
+                mass += density.fan_mass(a, b);
+                let q = density.fan_moment(a, b);
+                mom[0] += q[0];
+                mom[1] += q[1];
+            }
+            Piece::Arc { alpha, beta } => {
+                mass += density.sector_mass(r, alpha, beta);
+                let q = density.sector_moment(r, alpha, beta);
+                mom[0] += q[0];
+                mom[1] += q[1];
+            }
+        }
+    }
+    (mass.max(0.0), mom)
+}
+
+/// All cell integrals of the current (regular) triangulation, clipped to the disk of radius `r`.
+pub fn integrate(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity) -> CellIntegrals {
+    let centers: Vec<[f64; 2]> = (0..tri.triangles.len()).into_par_iter().map(|t| tri.power_center(t)).collect();
+    let max_c = centers.iter().map(|c| c[0].abs().max(c[1].abs())).fold(0.0f64, f64::max);
+    let far = 4.0 * (r + max_c.min(1e8 * r.max(1.0))) + 1.0;
+    let (mass, moment): (Vec<f64>, Vec<[f64; 2]>) = (0..tri.sites.len())
+        .into_par_iter()
+        .map(|i| {
+            let (pts, labels) = dual_polygon(tri, &centers, i, far);
+            let (pieces, full) = clip_to_disk(&pts, &labels, r);
+            integrate_cell(&pieces, full, r, density)
+        })
+        .unzip();
+    let edges: Vec<(u32, u32, f64)> = (0..tri.triangles.len())
+        .into_par_iter()
+        .flat_map_iter(|t| {
+            let tr = tri.triangles[t];
+            let centers = &centers;
+            (0..3).filter_map(move |k| {
+                let u = tri.neighbors[t][k];
+                let (i, j) = (tr[(k + 1) % 3], tr[(k + 2) % 3]);
+                let (a, b) = if u == NONE {
+                    // Hull edge i -> j: ray outward (to the right of i -> j).
+                    let (pi, pj) = (tri.sites[i as usize], tri.sites[j as usize]);
+                    let nrm = unit([pj[1] - pi[1], -(pj[0] - pi[0])]);
+                    let c = centers[t];
+                    (c, [c[0] + far * nrm[0], c[1] + far * nrm[1]])
+                } else if (u as usize) > t {
+                    (centers[t], centers[u as usize])
+                } else {
+                    return None;
+                };
+                let (x0, x1, _, _) = clip_segment(a, b, r)?;
+                let s = density.segment_integral(x0, x1);
+                let (pi, pj) = (tri.sites[i as usize], tri.sites[j as usize]);
+                let d = ((pi[0] - pj[0]).powi(2) + (pi[1] - pj[1]).powi(2)).sqrt();
+                (s > 0.0 && d > 0.0).then(|| (i.min(j), i.max(j), s / (2.0 * d)))
+            })
+        })
+        .collect();
+    CellIntegrals { mass, moment, edges }
+}

@@ -1,0 +1,13 @@
+//! Semi-discrete optimal transport on a disk (paper Sec. 2.2 and 3.1.2, after Zhao et al.
+//! 2013): the power diagram of the sites clipped to the disk of radius `r`
+//! ([`cells`]), kept as a regular triangulation updated by flips ([`triangulation`]), with
+//! exact density integrals ([`density`]) and a damped Newton driver ([`newton`]).
+
+pub mod cells;
+pub mod density;
+pub mod newton;
+pub mod triangulation;
+
+pub use cells::CellIntegrals;
+pub use density::{RadialDensity, StereographicDensity, UniformDensity};
+pub use newton::{OmtError, OtOptions, OtReport, OtSolver};

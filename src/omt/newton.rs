@@ -1,0 +1,341 @@
+//! Damped Newton method for semi-discrete optimal transport (Kitagawa, Mérigot and Thibert
+//! 2019), as used by the paper through Zhao et al. 2013 (Sec. 2.2, Eq. 8).
+//!
+//! Unknowns are the power weights `w` (the paper's heights `h` with `w_i = |y_i|^2 + 2 h_i`).
+//! The gradient of the concave Kantorovich functional is `tau - m(w)` and its Hessian is the
+//! weighted graph Laplacian of the power diagram ([`super::cells`]). Each step solves
+//! `H dw = tau - m(w)` (one weight pinned: the diagram is invariant under a common shift) by
+//! sparse Cholesky, then halves the step until every cell keeps at least `epsilon` mass and
+//! the mass error drops by the factor `1 - alpha / 2`. When that stalls, a continuation on
+//! the target masses takes over ([`OtSolver::solve`]).
+
+use super::cells::{integrate, CellIntegrals};
+use super::density::RadialDensity;
+use super::triangulation::{RegularTriangulation, TriangulationError};
+use crate::linalg::{SolveError, SpdSolver, TripletList};
+use crate::progress::{self, Cancelled, Progress, Stage};
+
+/// Options of the transport solver.
+#[derive(Debug, Clone)]
+pub struct OtOptions {
+    /// Stop when `sum |m_i - tau_i| / sum tau_i` is below this. Default `1e-7`.
+    pub tolerance: f64,
+    /// Maximum number of Newton iterations. Default 200.
+    pub max_iterations: usize,
+    /// Smallest damping factor tried before giving up. Default `2^-30`.
+    pub min_step: f64,
+}
+
+impl Default for OtOptions {
+    fn default() -> Self {
+        Self { tolerance: 1e-7, max_iterations: 200, min_step: 1.0 / (1u64 << 30) as f64 }
+    }
+}
+
+impl OtOptions {
+    /// Set [`OtOptions::tolerance`].
+    pub fn with_tolerance(mut self, t: f64) -> Self {
+        self.tolerance = t;
+        self
+    }
+    /// Set [`OtOptions::max_iterations`].
+    pub fn with_max_iterations(mut self, n: usize) -> Self {
+        self.max_iterations = n;
+        self
+    }
+}
+
+/// Errors of the transport stage.
+#[derive(Debug, Clone, thiserror::Error)]
+#[non_exhaustive]
+pub enum OmtError {
+    /// The sites could not be triangulated.
+    #[error(transparent)]
+    Triangulation(#[from] TriangulationError),
+    /// The Newton system could not be solved.
+    #[error("optimal transport Newton system: {0}")]
+    Linear(#[from] SolveError),
+    /// Damping reached the minimum step without progress.
+    #[error("optimal transport stalled at iteration {iteration} with relative mass error {error:.3e} (the initial map may be too distorted; try a smaller mesh or report this mesh)")]
+    Stalled {
+        /// Iteration.
+        iteration: usize,
+        /// Relative L1 mass error reached.
+        error: f64,
+    },
+    /// No convergence within the iteration budget.
+    #[error("optimal transport did not converge in {iterations} iterations (relative mass error {error:.3e} > tolerance {tolerance:.1e}); raise max_iterations or the tolerance")]
+    NotConverged {
+        /// Iterations done.
+        iterations: usize,
+        /// Error reached.
+        error: f64,
+        /// Requested tolerance.
+        tolerance: f64,
+    },
+    /// Bad arguments (lengths, non-positive masses).
+    #[error("invalid transport problem: {0}")]
+    Invalid(String),
+    /// Cancelled through the progress callback.
+    #[error(transparent)]
+    Cancelled(#[from] Cancelled),
+}
+
+/// What the solver did.
+#[derive(Debug, Clone, Default, serde::Serialize)]
+pub struct OtReport {
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Final relative L1 mass error.
+    pub mass_error: f64,
+    /// Largest relative error of a single cell.
+    pub max_cell_error: f64,
+    /// Edge flips done to keep the triangulation regular.
+    pub flips: usize,
+    /// Smallest damping factor accepted.
+    pub min_step: f64,
+    /// Continuation steps taken after plain Newton stalled (0 when it did not).
+    pub continuation_steps: usize,
+}
+
+enum NewtonFailure {
+    Stalled { iteration: usize, error: f64 },
+    Linear(SolveError),
+    Cancelled(Cancelled),
+}
+
+/// A semi-discrete transport solver for fixed sites on the disk of radius `r`; it keeps its
+/// triangulation and weights so that a new radius or new targets start warm.
+pub struct OtSolver<'d> {
+    tri: RegularTriangulation,
+    radius: f64,
+    density: &'d dyn RadialDensity,
+    linear: SpdSolver,
+}
+
+impl<'d> OtSolver<'d> {
+    /// A solver for `sites` on the disk of radius `radius` with source `density`.
+    pub fn new(sites: &[[f64; 2]], radius: f64, density: &'d dyn RadialDensity) -> Result<Self, OmtError> {
+        if !(radius > 0.0 && radius.is_finite()) {
+            return Err(OmtError::Invalid(format!("radius {radius} must be positive")));
+        }
+        let tri = RegularTriangulation::delaunay(sites)?;
+        Ok(Self { tri, radius, density, linear: SpdSolver::new() })
+    }
+
+    /// The current radius.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// The current weights.
+    pub fn weights(&self) -> &[f64] {
+        &self.tri.weights
+    }
+
+    /// The current sites.
+    pub fn sites(&self) -> &[[f64; 2]] {
+        &self.tri.sites
+    }
+
+    /// Scale sites, weights and the disk by `s`: the regular triangulation is unchanged, so
+    /// this is the warm start of the radius search.
+    pub fn rescale(&mut self, s: f64) {
+        for p in &mut self.tri.sites {
+            p[0] *= s;
+            p[1] *= s;
+        }
+        for w in &mut self.tri.weights {
+            *w *= s * s;
+        }
+        self.radius *= s;
+    }
+
+    /// Cell integrals at the current weights.
+    pub fn integrals(&self) -> CellIntegrals {
+        integrate(&self.tri, self.radius, self.density)
+    }
+
+    /// Solve for weights whose cells carry the masses `target` (rescaled to sum to the disk's
+    /// mass). Returns the final integrals and a report.
+    ///
+    /// Damped Newton is tried first. When it stalls (a strongly compressing initial map leaves
+    /// cells many orders of magnitude too small), the solver continues along geometric
+    /// interpolations of the targets `m0^(1-t) tau^t` from the current masses `m0`, with
+    /// Newton solving each step and `t` advancing as fast as Newton allows.
+    pub fn solve(
+        &mut self,
+        target: &[f64],
+        options: &OtOptions,
+        progress: &dyn Progress,
+    ) -> Result<(CellIntegrals, OtReport), OmtError> {
+        let n = self.tri.sites.len();
+        if target.len() != n {
+            return Err(OmtError::Invalid(format!("{} target masses for {} sites", target.len(), n)));
+        }
+        let total: f64 = target.iter().sum();
+        if !(total > 0.0) || target.iter().any(|t| !(*t > 0.0 && t.is_finite())) {
+            return Err(OmtError::Invalid("target masses must be positive and finite".into()));
+        }
+        let disk = self.density.disk_mass(self.radius);
+        let tau: Vec<f64> = target.iter().map(|t| t * disk / total).collect();
+        let flips0 = self.tri.flips;
+        let mut report = OtReport { min_step: 1.0, ..Default::default() };
+        let saved = self.tri.clone();
+        let cells = match self.newton(&tau, options, options.max_iterations, &mut report, progress) {
+            Ok(c) => c,
+            Err(NewtonFailure::Cancelled(c)) => return Err(c.into()),
+            Err(NewtonFailure::Linear(e)) => return Err(e.into()),
+            Err(NewtonFailure::Stalled { .. }) => {
+                self.tri = saved;
+                self.continuation(&tau, options, &mut report, progress)?
+            }
+        };
+        let err = l1_error(&cells.mass, &tau) / disk;
+        if err > options.tolerance {
+            return Err(OmtError::NotConverged { iterations: report.iterations, error: err, tolerance: options.tolerance });
+        }
+        report.mass_error = err;
+        report.max_cell_error = cells.mass.iter().zip(&tau).map(|(m, t)| (m - t).abs() / t).fold(0.0, f64::max);
+        report.flips = self.tri.flips - flips0;
+        Ok((cells, report))
+    }
+
+    /// Continuation from the current masses to `tau` (see [`OtSolver::solve`]).
+    fn continuation(
+        &mut self,
+        tau: &[f64],
+        options: &OtOptions,
+        report: &mut OtReport,
+        progress: &dyn Progress,
+    ) -> Result<CellIntegrals, OmtError> {
+        let disk = self.density.disk_mass(self.radius);
+        let m0 = self.integrals().mass;
+        let floor = 1e-300f64;
+        let log_m0: Vec<f64> = m0.iter().map(|m| m.max(floor).ln()).collect();
+        let log_tau: Vec<f64> = tau.iter().map(|t| t.ln()).collect();
+        let (mut t, mut dt) = (0.0f64, 0.125f64);
+        report.continuation_steps = 0;
+        loop {
+            let t_try = (t + dt).min(1.0);
+            let mut tau_t: Vec<f64> = log_m0.iter().zip(&log_tau).map(|(a, b)| ((1.0 - t_try) * a + t_try * b).exp()).collect();
+            let s: f64 = tau_t.iter().sum();
+            tau_t.iter_mut().for_each(|x| *x *= disk / s);
+            let saved = self.tri.clone();
+            let step_options = OtOptions { tolerance: if t_try < 1.0 { options.tolerance.max(1e-4) } else { options.tolerance }, ..options.clone() };
+            match self.newton(&tau_t, &step_options, 40, report, progress) {
+                Ok(cells) => {
+                    report.continuation_steps += 1;
+                    t = t_try;
+                    if t >= 1.0 {
+                        return Ok(cells);
+                    }
+                    dt = (dt * 2.0).min(0.5);
+                }
+                Err(NewtonFailure::Cancelled(c)) => return Err(c.into()),
+                Err(NewtonFailure::Linear(e)) => return Err(e.into()),
+                Err(NewtonFailure::Stalled { iteration, error }) => {
+                    self.tri = saved;
+                    dt *= 0.25;
+                    if dt < 1e-6 {
+                        return Err(OmtError::Stalled { iteration, error });
+                    }
+                }
+            }
+        }
+    }
+
+    /// Damped Newton towards `tau` from the current weights.
+    fn newton(
+        &mut self,
+        tau: &[f64],
+        options: &OtOptions,
+        max_iterations: usize,
+        report: &mut OtReport,
+        progress: &dyn Progress,
+    ) -> Result<CellIntegrals, NewtonFailure> {
+        let disk = self.density.disk_mass(self.radius);
+        let mut cells = self.integrals();
+        let mut err = l1_error(&cells.mass, tau) / disk;
+        let min_tau = tau.iter().cloned().fold(f64::INFINITY, f64::min);
+        let min_m0 = cells.mass.iter().cloned().fold(f64::INFINITY, f64::min);
+        let eps = 0.5 * min_tau.min(min_m0.max(0.0));
+        let err0 = err.max(options.tolerance);
+        let mut small_steps = 0;
+        for it in 0..max_iterations {
+            if err <= options.tolerance {
+                return Ok(cells);
+            }
+            let frac = ((err0.ln() - err.ln()) / (err0.ln() - options.tolerance.ln())).clamp(0.0, 1.0);
+            progress::check(progress, Stage::Transport, frac, &format!("mass error {err:.2e}")).map_err(NewtonFailure::Cancelled)?;
+            let dw = self.newton_direction(&cells, tau).map_err(NewtonFailure::Linear)?;
+            let mut alpha = 1.0;
+            loop {
+                let mut trial = self.tri.clone();
+                let w: Vec<f64> = self.tri.weights.iter().zip(&dw).map(|(w, d)| w + alpha * d).collect();
+                if trial.update_weights(&w) {
+                    let c = integrate(&trial, self.radius, self.density);
+                    let e = l1_error(&c.mass, tau) / disk;
+                    let min_m = c.mass.iter().cloned().fold(f64::INFINITY, f64::min);
+                    if min_m >= eps && e <= (1.0 - 0.5 * alpha) * err {
+                        self.tri = trial;
+                        cells = c;
+                        err = e;
+                        break;
+                    }
+                }
+                alpha *= 0.5;
+                if alpha < options.min_step {
+                    return Err(NewtonFailure::Stalled { iteration: it, error: err });
+                }
+            }
+            report.iterations += 1;
+            report.min_step = report.min_step.min(alpha);
+            // Many tiny steps in a row: this path is hopeless, let the caller continue.
+            small_steps = if alpha < 1e-3 { small_steps + 1 } else { 0 };
+            if small_steps >= 4 {
+                return Err(NewtonFailure::Stalled { iteration: it, error: err });
+            }
+        }
+        if err <= options.tolerance {
+            Ok(cells)
+        } else {
+            Err(NewtonFailure::Stalled { iteration: max_iterations, error: err })
+        }
+    }
+
+    /// Solve `H dw = tau - m` with `w_0` pinned.
+    fn newton_direction(&mut self, cells: &CellIntegrals, tau: &[f64]) -> Result<Vec<f64>, SolveError> {
+        let n = tau.len();
+        if n == 1 {
+            return Ok(vec![0.0]);
+        }
+        let mut trip = TripletList::with_capacity(n - 1, 4 * cells.edges.len() + n);
+        let mut diag = vec![0.0; n];
+        for &(i, j, c) in &cells.edges {
+            diag[i as usize] += c;
+            diag[j as usize] += c;
+            if i > 0 && j > 0 {
+                trip.push(i as usize - 1, j as usize - 1, -c);
+                trip.push(j as usize - 1, i as usize - 1, -c);
+            }
+        }
+        let scale = diag.iter().cloned().fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+        for (i, d) in diag.iter().enumerate().skip(1) {
+            // A tiny regularisation keeps isolated cells (no interior edge) solvable.
+            trip.push(i - 1, i - 1, d + 1e-14 * scale);
+        }
+        let h = trip.assemble("transport Hessian")?;
+        self.linear.factor(&h, "transport Hessian")?;
+        let mut rhs = vec![(1..n).map(|i| tau[i] - cells.mass[i]).collect::<Vec<f64>>()];
+        self.linear.solve_in_place(&mut rhs, "transport Hessian")?;
+        let mut dw = Vec::with_capacity(n);
+        dw.push(0.0);
+        dw.extend_from_slice(&rhs[0]);
+        Ok(dw)
+    }
+}
+
+fn l1_error(m: &[f64], tau: &[f64]) -> f64 {
+    m.iter().zip(tau).map(|(a, b)| (a - b).abs()).sum()
+}

@@ -1,0 +1,114 @@
+//! Semi-discrete transport: the Hessian against finite differences of the cell masses, mass
+//! conservation, and Newton convergence to prescribed masses.
+
+use capmesh::omt::cells::integrate;
+use capmesh::omt::triangulation::RegularTriangulation;
+use capmesh::omt::{OtOptions, OtSolver, RadialDensity, StereographicDensity, UniformDensity};
+use capmesh::progress::NoProgress;
+
+fn lcg(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed;
+    move || {
+        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((s >> 11) as f64) / ((1u64 << 53) as f64)
+    }
+}
+
+/// Random sites in the disk of radius r, some on the circle.
+fn sites(n: usize, r: f64, seed: u64) -> Vec<[f64; 2]> {
+    let mut rnd = lcg(seed);
+    let mut out = Vec::new();
+    let m = 24;
+    for k in 0..m {
+        let t = 2.0 * std::f64::consts::PI * (k as f64 + 0.3 * rnd()) / m as f64;
+        out.push([r * t.cos(), r * t.sin()]);
+    }
+    while out.len() < n {
+        let p = [r * (2.0 * rnd() - 1.0), r * (2.0 * rnd() - 1.0)];
+        if p[0] * p[0] + p[1] * p[1] < 0.9 * r * r {
+            out.push(p);
+        }
+    }
+    out
+}
+
+fn masses(sites: &[[f64; 2]], w: &[f64], r: f64, d: &dyn RadialDensity) -> Vec<f64> {
+    let mut tri = RegularTriangulation::delaunay(sites).unwrap();
+    assert!(tri.update_weights(w));
+    integrate(&tri, r, d).mass
+}
+
+#[test]
+fn hessian_matches_finite_differences_of_masses() {
+    for (r, d) in [(1.7, &StereographicDensity as &dyn RadialDensity), (1.0, &UniformDensity as &dyn RadialDensity)] {
+        let s = sites(120, r, 11);
+        let mut rnd = lcg(5);
+        let w: Vec<f64> = (0..s.len()).map(|_| 0.002 * r * r * (rnd() - 0.5)).collect();
+        let mut tri = RegularTriangulation::delaunay(&s).unwrap();
+        assert!(tri.update_weights(&w));
+        let cells = integrate(&tri, r, d);
+        let n = s.len();
+        // Dense Hessian from the edge list: H_ij = -c, H_ii = sum c.
+        let mut h = vec![vec![0.0; n]; n];
+        for &(i, j, c) in &cells.edges {
+            let (i, j) = (i as usize, j as usize);
+            h[i][j] -= c;
+            h[j][i] -= c;
+            h[i][i] += c;
+            h[j][j] += c;
+        }
+        let delta = 1e-7 * r * r;
+        let mut worst: f64 = 0.0;
+        let scale = h.iter().map(|row| row.iter().map(|x| x.abs()).fold(0.0, f64::max)).fold(0.0, f64::max);
+        for j in (0..n).step_by(7) {
+            let mut wp = w.clone();
+            wp[j] += delta;
+            let mut wm = w.clone();
+            wm[j] -= delta;
+            let (mp, mm) = (masses(&s, &wp, r, d), masses(&s, &wm, r, d));
+            for i in 0..n {
+                let fd = (mp[i] - mm[i]) / (2.0 * delta);
+                worst = worst.max((fd - h[i][j]).abs());
+            }
+        }
+        assert!(worst < 1e-5 * scale, "Hessian vs finite differences: worst {worst:.3e}, scale {scale:.3e}");
+    }
+}
+
+#[test]
+fn cell_masses_sum_to_the_disk_mass() {
+    for r in [0.3, 1.0, 4.0] {
+        let s = sites(300, r, 3);
+        let mut rnd = lcg(9);
+        let w: Vec<f64> = (0..s.len()).map(|_| 1e-5 * r * r * (rnd() - 0.5)).collect();
+        for d in [&StereographicDensity as &dyn RadialDensity, &UniformDensity] {
+            let m = masses(&s, &w, r, d);
+            let total: f64 = m.iter().sum();
+            assert!((total - d.disk_mass(r)).abs() < 1e-11 * d.disk_mass(r), "r = {r}: {total} vs {}", d.disk_mass(r));
+            assert!(m.iter().all(|x| *x > 0.0));
+        }
+    }
+}
+
+#[test]
+fn newton_reaches_prescribed_masses() {
+    let r = 2.0;
+    let s = sites(400, r, 21);
+    let mut rnd = lcg(2);
+    // Targets varying by a factor 4 across the disk.
+    let target: Vec<f64> = (0..s.len()).map(|_| 0.5 + 1.5 * rnd()).collect();
+    let d = StereographicDensity;
+    let mut solver = OtSolver::new(&s, r, &d).unwrap();
+    let (cells, report) = solver.solve(&target, &OtOptions::default(), &NoProgress).unwrap();
+    let total: f64 = target.iter().sum();
+    for (m, t) in cells.mass.iter().zip(&target) {
+        let t = t * d.disk_mass(r) / total;
+        assert!((m - t).abs() < 1e-4 * t, "mass {m} target {t}");
+    }
+    assert!(report.mass_error <= 1e-7);
+    assert!(report.iterations >= 1);
+    // Warm start at another radius converges in few iterations.
+    solver.rescale(1.1);
+    let (_, again) = solver.solve(&target, &OtOptions::default(), &NoProgress).unwrap();
+    assert!(again.iterations <= report.iterations + 2);
+}

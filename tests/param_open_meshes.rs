@@ -1,0 +1,65 @@
+//! The shared open meshes (face, left ventricle, MEG helmet, hand, hippocampus sheet) map onto
+//! the adaptive cap with no folded face and mean |d_area| <= 0.12, and the adaptive map's mean
+//! |d_angle| is no larger than the hemisphere baseline's (paper Table 1).
+
+use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::io::read_mesh;
+use capmesh::progress::NoProgress;
+use std::path::PathBuf;
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
+}
+
+fn check(name: &str) {
+    let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
+    let adaptive = parameterize(&mesh, &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let hemi = parameterize(&mesh, &ParamOptions::default().with_domain(Domain::Hemisphere), &NoProgress)
+        .unwrap_or_else(|e| panic!("{name} (hemisphere): {e}"));
+    let (a, h) = (&adaptive.report, &hemi.report);
+    eprintln!(
+        "{name}: adaptive Z* {:.3} d_area {:.4} d_angle {:.4} flips {} (folded before repair {} uniform {}) | hemisphere d_area {:.4} d_angle {:.4} | {:.1}s",
+        a.z_star.unwrap(),
+        a.area_distortion.mean_abs,
+        a.angle_distortion.mean_abs,
+        a.flipped_faces,
+        a.untangle.folded_before,
+        a.untangle.uniform_vertices,
+        h.area_distortion.mean_abs,
+        h.angle_distortion.mean_abs,
+        a.seconds
+    );
+    assert_eq!(a.flipped_faces, 0, "{name}: folded faces");
+    assert!(a.area_distortion.mean_abs <= 0.12, "{name}: mean |d_area| = {}", a.area_distortion.mean_abs);
+    assert!(
+        a.angle_distortion.mean_abs <= h.angle_distortion.mean_abs,
+        "{name}: adaptive mean |d_angle| {} > hemisphere {}",
+        a.angle_distortion.mean_abs,
+        h.angle_distortion.mean_abs
+    );
+}
+
+#[test]
+fn face() {
+    check("open_face_choi.obj.gz");
+}
+
+#[test]
+fn left_ventricle() {
+    check("open_lv_endo_rabbit_chaste.obj.gz");
+}
+
+#[test]
+fn meg_helmet() {
+    check("open_meg_helmet_babysquid_mne.obj.gz");
+}
+
+#[test]
+fn hand() {
+    check("open_hand_choi.obj.gz");
+}
+
+#[test]
+fn hippocampus_sheet_with_coincident_vertices() {
+    check("open_hippocampus_sheet_hippunfold.obj.gz");
+}
