@@ -8,7 +8,8 @@
 
 use super::brent;
 use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
-use super::planar_transport::PlanarTransport;
+use super::planar_transport::{PlanarTransport, TransportMap};
+use super::regularize::{CentroidSmoother, Smoothing, SmoothingTrial, AUTO_KAPPAS};
 use super::untangle::{untangle, UntangleReport};
 use super::stereographic::{inverse_stereographic, radius_of_z_star, z_star_of_radius};
 use crate::error::Error;
@@ -19,7 +20,7 @@ use crate::mesh::geometry::{signed_area_2d, vertex_areas};
 use crate::mesh::{repair, validate, SurfaceKind, TriMesh};
 use crate::linalg::cotangent_weights;
 use crate::metrics::{angle_distortion, area_distortion, conformal_energy, Stats};
-use crate::omt::{OtOptions, RadialDensity, StereographicDensity, UniformDensity};
+use crate::omt::{OmtError, OtOptions, RadialDensity, StereographicDensity, UniformDensity};
 use crate::progress::{self, Progress, Stage};
 use std::time::Instant;
 
@@ -36,11 +37,14 @@ pub struct ParamOptions {
     pub transport: OtOptions,
     /// Disk conformal map options.
     pub flatten: DiskConformalOptions,
-    /// Initial map of open surfaces. Default [`OpenInitialMap::Conformal`] (the paper's).
+    /// Initial map of open surfaces. Default [`OpenInitialMap::Composite`];
+    /// [`OpenInitialMap::Conformal`] is the paper's disk conformal map.
     pub open_initial: OpenInitialMap,
-    /// Regularisation of the centroid map (see [`super::regularize`]); 0 is the paper's plain
-    /// centroid map. Default 0.
-    pub smoothing: f64,
+    /// `lambda` of the composite initial map of open surfaces. Default [`DEFAULT_OPEN_LAMBDA`].
+    pub open_lambda: f64,
+    /// Regularisation of the final centroid map (see [`super::regularize`]);
+    /// `Smoothing::Fixed(0.0)` is the paper's plain centroid map. Default [`Smoothing::Auto`].
+    pub smoothing: Smoothing,
     /// Closed-surface flattening options (lambda, puncture, stretch energy).
     pub closed: ClosedFlattenOptions,
     /// Vertices closer than this times the bounding-box diagonal are welded before mapping
@@ -57,8 +61,9 @@ impl Default for ParamOptions {
             transport: OtOptions::default(),
             flatten: DiskConformalOptions::default(),
             closed: ClosedFlattenOptions::default(),
-            smoothing: 0.0,
-            open_initial: OpenInitialMap::Conformal,
+            smoothing: Smoothing::Auto,
+            open_initial: OpenInitialMap::Composite,
+            open_lambda: DEFAULT_OPEN_LAMBDA,
             weld_tolerance: 1e-9,
         }
     }
@@ -72,14 +77,32 @@ impl ParamOptions {
     }
 }
 
+/// `lambda` of the composite initial map of open surfaces. The paper flattens open surfaces
+/// conformally; on elongated or branching surfaces (the hand, the hippocampal sheet) that
+/// squeezes protrusions by orders of magnitude and the transport map inherits the error. Its
+/// closed-surface recipe with `lambda = 0.5` keeps every shared open mesh at or below the
+/// paper's open-surface distortion (see README).
+pub const DEFAULT_OPEN_LAMBDA: f64 = 0.5;
+
 /// Initial flattening of open surfaces.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum OpenInitialMap {
     /// Disk conformal map (paper Sec. 3.1.1).
-    #[default]
     Conformal,
     /// Stretch energy map composed with `lambda * mu` (the closed-surface recipe, Sec. 3.2.1).
+    #[default]
     Composite,
+}
+
+impl std::str::FromStr for OpenInitialMap {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "conformal" => Ok(OpenInitialMap::Conformal),
+            "composite" => Ok(OpenInitialMap::Composite),
+            _ => Err(format!("unknown initial map '{s}': use conformal or composite")),
+        }
+    }
 }
 
 /// The initial flattening's report, by surface kind.
@@ -130,6 +153,10 @@ pub struct ParamReport {
     pub conformal_energy: f64,
     /// Faces with non-positive orientation in the final map.
     pub flipped_faces: usize,
+    /// Regularisation strength of the final centroid map (0: the paper's plain map).
+    pub smoothing_kappa: f64,
+    /// Every regularisation tried, with its measured area distortion.
+    pub smoothing_trials: Vec<SmoothingTrial>,
     /// The repair of folded faces after transport (see [`super::untangle`]).
     pub untangle: UntangleReport,
     /// Newton iterations over all transport solves.
@@ -182,7 +209,8 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
         SurfaceKind::OpenDisk => {
             let boundary = topology.boundary_loops[0].clone();
             if options.open_initial == OpenInitialMap::Composite {
-                let (disk, rep) = composite_disk_map(&work.vertices, &work.faces, &boundary, &options.closed)?;
+                let composite = ClosedFlattenOptions { lambda: options.open_lambda, ..options.closed.clone() };
+                let (disk, rep) = composite_disk_map(&work.vertices, &work.faces, &boundary, &composite)?;
                 (work.faces.clone(), boundary, disk, FlattenReport::Closed(rep), None)
             } else {
                 let (disk, rep) = disk_conformal_map(&work.vertices, &work.faces, &boundary, &options.flatten)?;
@@ -203,25 +231,24 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
     let stereo = StereographicDensity;
     let uniform = UniformDensity;
     let density: &dyn RadialDensity = if options.domain == Domain::Disk { &uniform } else { &stereo };
-    let cot = cotangent_weights(&work.vertices, &faces);
-    let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, density, options.transport.clone(), &cot, options.smoothing);
+    let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, density, options.transport.clone());
     let t_ot = Instant::now();
     let mut curve = Vec::new();
-    let (radius, mut plane) = match options.domain {
-        Domain::Disk => (1.0, transport.map_at(1.0, progress)?.0),
+    let (radius, transported) = match options.domain {
+        Domain::Disk => (1.0, transport.map_at(1.0, progress)?),
         Domain::Adaptive => {
-            let mut best: Option<(f64, f64, Vec<[f64; 2]>)> = None;
+            let mut best: Option<(f64, f64, TransportMap)> = None;
             let mut evals = 0usize;
             let max_evals = options.max_search_evaluations;
             let mut objective = |z: f64| -> Result<f64, Error> {
                 let r = radius_of_z_star(z);
                 evals += 1;
                 progress::check(progress, Stage::RadiusSearch, evals as f64 / max_evals as f64, &format!("r = {r:.4}, Z* = {z:.4}"))?;
-                let (pos, rep) = transport.map_at(r, progress)?;
-                let e = conformal_energy(&work.vertices, &pos, &faces);
-                curve.push(RadiusSample { r, z_star: z, energy: e, newton_iterations: rep.iterations });
+                let map = transport.map_at(r, progress)?;
+                let e = conformal_energy(&work.vertices, &map.centroids, &faces);
+                curve.push(RadiusSample { r, z_star: z, energy: e, newton_iterations: map.report.iterations });
                 if best.as_ref().map_or(true, |b| e < b.1) {
-                    best = Some((r, e, pos));
+                    best = Some((r, e, map));
                 }
                 Ok(e)
             };
@@ -232,17 +259,39 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
         }
         fixed => {
             let r = fixed.fixed_radius().unwrap_or(1.0);
-            (r, transport.map_at(r, progress)?.0)
+            (r, transport.map_at(r, progress)?)
         }
     };
     let transport_seconds = t_ot.elapsed().as_secs_f64();
-    let untangle_report = untangle(&mut plane, &faces, &on_boundary, radius);
-    progress::check(progress, Stage::Project, 0.0, "inverse stereographic projection")?;
-    let cap_work: Vec<[f64; 3]> = if options.domain == Domain::Disk {
-        plane.iter().map(|p| [p[0], p[1], 0.0]).collect()
-    } else {
-        plane.iter().map(|&p| inverse_stereographic(p)).collect()
+    let to_cap = |p: &[[f64; 2]]| -> Vec<[f64; 3]> {
+        if options.domain == Domain::Disk {
+            p.iter().map(|q| [q[0], q[1], 0.0]).collect()
+        } else {
+            p.iter().map(|&q| inverse_stereographic(q)).collect()
+        }
     };
+    let cot = cotangent_weights(&work.vertices, &faces);
+    let mut smoother = CentroidSmoother::new(&cot, &on_boundary);
+    let kappas: Vec<f64> = match options.smoothing {
+        Smoothing::Auto => AUTO_KAPPAS.to_vec(),
+        Smoothing::Fixed(k) => vec![k],
+    };
+    let mut trials = Vec::new();
+    // Best (any folds left, mean |d_area|) so far, lexicographically.
+    let mut chosen: Option<((bool, f64), f64, Vec<[f64; 2]>, UntangleReport)> = None;
+    for kappa in kappas {
+        let mut p = smoother.smooth(&transported.centroids, &transported.masses, kappa).map_err(OmtError::Linear)?;
+        let rep = untangle(&mut p, &faces, &on_boundary, radius);
+        let d = Stats::of(area_distortion(&work.vertices, &to_cap(&p), &faces)).mean_abs;
+        trials.push(SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before });
+        let key = (rep.folded_after > 0, d);
+        if chosen.as_ref().map_or(true, |(best, ..)| key < *best) {
+            chosen = Some((key, kappa, p, rep));
+        }
+    }
+    let (_, kappa, plane, untangle_report) = chosen.ok_or_else(|| Error::InvalidOption("no smoothing candidate".into()))?;
+    progress::check(progress, Stage::Project, 0.0, "inverse stereographic projection")?;
+    let cap_work = to_cap(&plane);
     let flipped_faces = faces
         .iter()
         .filter(|f| signed_area_2d(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize]) <= 0.0)
@@ -261,6 +310,8 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
         conformal_energy: conformal_energy(&work.vertices, &plane, &faces),
         flipped_faces,
         untangle: untangle_report,
+        smoothing_kappa: kappa,
+        smoothing_trials: trials,
         newton_iterations: transport.newton_iterations,
         transport_solves: transport.solves,
         radius_curve: curve,

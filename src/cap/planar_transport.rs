@@ -6,10 +6,19 @@
 //! One [`PlanarTransport`] serves the whole radius search: its solver is rescaled to each new
 //! radius, so Newton starts from the previous radius's weights.
 
-use super::regularize::CentroidSmoother;
-use crate::linalg::CotanWeights;
 use crate::omt::{CellIntegrals, OmtError, OtOptions, OtReport, OtSolver, RadialDensity};
 use crate::progress::Progress;
+
+/// The transport map at one radius.
+#[derive(Debug, Clone)]
+pub struct TransportMap {
+    /// Cell centroids (boundary vertices on the circle).
+    pub centroids: Vec<[f64; 2]>,
+    /// Cell masses.
+    pub masses: Vec<f64>,
+    /// Solver report.
+    pub report: OtReport,
+}
 
 /// Planar transport maps of one initial disk map at any radius.
 pub struct PlanarTransport<'a> {
@@ -19,8 +28,6 @@ pub struct PlanarTransport<'a> {
     density: &'a dyn RadialDensity,
     options: OtOptions,
     solver: Option<OtSolver<'a>>,
-    smoother: CentroidSmoother<'a>,
-    kappa: f64,
     /// Newton iterations over all radii.
     pub newton_iterations: usize,
     /// Transport solves.
@@ -28,24 +35,20 @@ pub struct PlanarTransport<'a> {
 }
 
 impl<'a> PlanarTransport<'a> {
-    /// Transport of `disk_map` (unit disk positions) towards `target` masses; the centroid
-    /// map is regularised with strength `kappa` using the surface's cotangent `weights`
-    /// (see [`super::regularize`]).
+    /// Transport of `disk_map` (unit disk positions) towards `target` masses.
     pub fn new(
         disk_map: &'a [[f64; 2]],
         on_boundary: &'a [bool],
         target: &'a [f64],
         density: &'a dyn RadialDensity,
         options: OtOptions,
-        weights: &'a CotanWeights,
-        kappa: f64,
     ) -> Self {
-        let smoother = CentroidSmoother::new(weights, on_boundary);
-        Self { disk_map, on_boundary, target, density, options, solver: None, smoother, kappa, newton_iterations: 0, solves: 0 }
+        Self { disk_map, on_boundary, target, density, options, solver: None, newton_iterations: 0, solves: 0 }
     }
 
-    /// Vertex positions of `h_r o r g` on the disk of radius `r`.
-    pub fn map_at(&mut self, r: f64, progress: &dyn Progress) -> Result<(Vec<[f64; 2]>, OtReport), OmtError> {
+    /// Vertex positions of `h_r o r g` on the disk of radius `r` (cell centroids), the cell
+    /// masses and the solver's report.
+    pub fn map_at(&mut self, r: f64, progress: &dyn Progress) -> Result<TransportMap, OmtError> {
         let solver = match self.solver.as_mut() {
             Some(s) => {
                 let scale = r / s.radius();
@@ -60,9 +63,8 @@ impl<'a> PlanarTransport<'a> {
         let (cells, report) = solver.solve(self.target, &self.options, progress)?;
         self.newton_iterations += report.iterations;
         self.solves += 1;
-        let c = positions(&cells, solver.sites(), self.on_boundary, r);
-        let p = self.smoother.smooth(&c, &cells.mass, self.kappa).map_err(OmtError::Linear)?;
-        Ok((p, report))
+        let centroids = positions(&cells, solver.sites(), self.on_boundary, r);
+        Ok(TransportMap { centroids, masses: cells.mass, report })
     }
 }
 

@@ -65,3 +65,47 @@ impl<'a> CentroidSmoother<'a> {
         Ok((0..n).map(|v| index[v].map_or(c[v], |i| [rhs[0][i], rhs[1][i]])).collect())
     }
 }
+
+/// How the centroid map is regularised.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Smoothing {
+    /// Try each of [`AUTO_KAPPAS`] (0 included) and keep the one with the smallest measured
+    /// mean `|d_area|` after fold repair.
+    Auto,
+    /// A fixed `kappa` (0 is the paper's plain centroid map).
+    Fixed(f64),
+}
+
+impl Default for Smoothing {
+    fn default() -> Self {
+        Smoothing::Auto
+    }
+}
+
+impl std::str::FromStr for Smoothing {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s == "auto" {
+            return Ok(Smoothing::Auto);
+        }
+        s.parse::<f64>()
+            .ok()
+            .filter(|k| k.is_finite() && *k >= 0.0)
+            .map(Smoothing::Fixed)
+            .ok_or_else(|| format!("smoothing must be 'auto' or a number >= 0, not '{s}'"))
+    }
+}
+
+/// The candidates of [`Smoothing::Auto`].
+pub const AUTO_KAPPAS: [f64; 7] = [0.0, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0];
+
+/// One tried regularisation.
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct SmoothingTrial {
+    /// Strength.
+    pub kappa: f64,
+    /// Mean `|d_area|` on the cap after fold repair.
+    pub mean_abs_area_distortion: f64,
+    /// Folded faces before repair.
+    pub folded_before_repair: usize,
+}
