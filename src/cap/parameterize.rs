@@ -9,14 +9,14 @@
 use super::brent;
 use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
 use super::planar_transport::{PlanarTransport, TransportMap};
-use super::regularize::{CentroidSmoother, Smoothing, SmoothingTrial, AUTO_KAPPAS};
-use super::untangle::{untangle, UntangleReport};
+use super::regularize::{regularise, Smoothing, SmoothingTrial};
+use super::untangle::{folded_faces, UntangleReport};
 use super::stereographic::{inverse_stereographic, radius_of_z_star, z_star_of_radius};
 use crate::error::Error;
 use crate::flatten::closed::{composite_disk_map, flatten_closed, ClosedFlattenOptions, ClosedFlattenReport};
 use crate::flatten::puncture::Puncture;
 use crate::flatten::{disk_conformal_map, DiskConformalOptions, DiskConformalReport};
-use crate::mesh::geometry::{signed_area_2d, vertex_areas};
+use crate::mesh::geometry::vertex_areas;
 use crate::mesh::{repair, validate, SurfaceKind, TriMesh};
 use crate::linalg::cotangent_weights;
 use crate::metrics::{angle_distortion, area_distortion, conformal_energy, Stats};
@@ -271,31 +271,11 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
         }
     };
     let cot = cotangent_weights(&work.vertices, &faces);
-    let mut smoother = CentroidSmoother::new(&cot, &on_boundary);
-    let kappas: Vec<f64> = match options.smoothing {
-        Smoothing::Auto => AUTO_KAPPAS.to_vec(),
-        Smoothing::Fixed(k) => vec![k],
-    };
-    let mut trials = Vec::new();
-    // Best (any folds left, mean |d_area|) so far, lexicographically.
-    let mut chosen: Option<((bool, f64), f64, Vec<[f64; 2]>, UntangleReport)> = None;
-    for kappa in kappas {
-        let mut p = smoother.smooth(&transported.centroids, &transported.masses, kappa).map_err(OmtError::Linear)?;
-        let rep = untangle(&mut p, &faces, &on_boundary, radius);
-        let d = Stats::of(area_distortion(&work.vertices, &to_cap(&p), &faces)).mean_abs;
-        trials.push(SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before });
-        let key = (rep.folded_after > 0, d);
-        if chosen.as_ref().map_or(true, |(best, ..)| key < *best) {
-            chosen = Some((key, kappa, p, rep));
-        }
-    }
-    let (_, kappa, plane, untangle_report) = chosen.ok_or_else(|| Error::InvalidOption("no smoothing candidate".into()))?;
+    let chosen = regularise(&transported, &work.vertices, &faces, &cot, &on_boundary, radius, options.smoothing, &to_cap).map_err(OmtError::Linear)?;
+    let (kappa, plane, untangle_report, trials) = (chosen.kappa, chosen.positions, chosen.untangle, chosen.trials);
     progress::check(progress, Stage::Project, 0.0, "inverse stereographic projection")?;
     let cap_work = to_cap(&plane);
-    let flipped_faces = faces
-        .iter()
-        .filter(|f| signed_area_2d(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize]) <= 0.0)
-        .count();
+    let flipped_faces = folded_faces(&plane, &faces).len();
     let spherical = options.domain != Domain::Disk;
     let report = ParamReport {
         domain: options.domain.to_string(),

@@ -8,7 +8,10 @@
 //! follows the transport map, below it the map is locally harmonic, so thin triangles keep
 //! the area share of their neighbours. `kappa = 0` is the paper's plain centroid map.
 
+use super::planar_transport::TransportMap;
+use super::untangle::{untangle, UntangleReport};
 use crate::linalg::{CotanWeights, SolveError, SpdSolver};
+use crate::metrics::{area_distortion, Stats};
 
 /// Smooths centroid maps of one mesh; keeps the factorization's symbolic part.
 pub struct CentroidSmoother<'a> {
@@ -108,4 +111,54 @@ pub struct SmoothingTrial {
     pub mean_abs_area_distortion: f64,
     /// Folded faces before repair.
     pub folded_before_repair: usize,
+}
+
+/// The regularised map that was kept.
+#[derive(Debug, Clone)]
+pub struct Regularised {
+    /// Strength used.
+    pub kappa: f64,
+    /// Final planar positions (folds repaired).
+    pub positions: Vec<[f64; 2]>,
+    /// The fold repair of the kept map.
+    pub untangle: UntangleReport,
+    /// Every strength tried.
+    pub trials: Vec<SmoothingTrial>,
+}
+
+/// Regularise the transport map `map` of the surface `(vertices, faces)`, repair its folds
+/// and keep the candidate with no fold left and the smallest mean `|d_area|` measured on the
+/// domain (`to_domain` lifts planar positions onto the cap or the planar disk).
+#[allow(clippy::too_many_arguments)]
+pub fn regularise(
+    map: &TransportMap,
+    vertices: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    weights: &CotanWeights,
+    fixed: &[bool],
+    radius: f64,
+    smoothing: Smoothing,
+    to_domain: &dyn Fn(&[[f64; 2]]) -> Vec<[f64; 3]>,
+) -> Result<Regularised, SolveError> {
+    let kappas: Vec<f64> = match smoothing {
+        Smoothing::Auto => AUTO_KAPPAS.to_vec(),
+        Smoothing::Fixed(k) => vec![k],
+    };
+    let mut smoother = CentroidSmoother::new(weights, fixed);
+    let mut trials = Vec::new();
+    // Best (any folds left, mean |d_area|) so far, lexicographically.
+    let mut best: Option<((bool, f64), Regularised)> = None;
+    for kappa in kappas {
+        let mut p = smoother.smooth(&map.centroids, &map.masses, kappa)?;
+        let rep = untangle(&mut p, faces, fixed, radius);
+        let d = Stats::of(area_distortion(vertices, &to_domain(&p), faces)).mean_abs;
+        trials.push(SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before });
+        let key = (rep.folded_after > 0, d);
+        if best.as_ref().map_or(true, |(k, _)| key < *k) {
+            best = Some((key, Regularised { kappa, positions: p, untangle: rep, trials: Vec::new() }));
+        }
+    }
+    let (_, mut kept) = best.ok_or(SolveError::Singular { what: "regularisation (no candidate)" })?;
+    kept.trials = trials;
+    Ok(kept)
 }

@@ -3,7 +3,8 @@
 //! Placing each vertex at the centroid of its power cell (Zhao et al. 2013) does not guarantee
 //! an orientation-preserving piecewise-linear map: where the initial map squeezed a protrusion
 //! (ears, fingers) a few triangles can fold. The repair solves one Tutte-type system
-//! (Floater's convex combination maps): every free vertex becomes a convex combination of its
+//! (Floater's convex combination maps), first near the folds and growing outwards: every
+//! vertex of the region becomes a convex combination of its
 //! neighbours, with the mean value coordinates of its transport position where that position
 //! lies in the kernel of its neighbours' polygon (the weights then reproduce it exactly) and
 //! uniform weights where it does not. With positive weights and the boundary on the circle the
@@ -90,6 +91,12 @@ fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
 
 /// Unfold `pos` in place if any face is folded. `fixed[v]` marks vertices that must not move
 /// (the boundary, on the circle of radius `radius`).
+///
+/// The convex-combination solve is local first: only vertices within `k` rings of a folded
+/// face move (the rest act as its boundary), with `k = 2, 4, 8, ...` until no fold is left;
+/// the last resort is the whole mesh with the fixed boundary. The attempt with the fewest
+/// folds left is kept (with only a few fixed vertices, as on a punctured closed surface, the
+/// whole-mesh solve can fold more than a local one).
 pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius: f64) -> UntangleReport {
     let folded = folded_faces(pos, faces);
     let mut report = UntangleReport { folded_before: folded.len(), ..Default::default() };
@@ -98,14 +105,68 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
     }
     let n = pos.len();
     let rings = ordered_rings(n, faces);
+    let original = pos.to_vec();
+    let mut region = vec![false; n];
+    for &f in &folded {
+        for &v in &faces[f] {
+            region[v as usize] = true;
+        }
+    }
+    let mut grown = 0;
+    // The attempt with the fewest folds left (the region grows, so ties keep the smaller one).
+    let mut best: Option<(usize, Vec<[f64; 2]>, usize)> = None;
+    loop {
+        let target = if grown == 0 { 2 } else { grown * 2 };
+        while grown < target {
+            let current: Vec<usize> = (0..n).filter(|&v| region[v]).collect();
+            for v in current {
+                if let Some(ring) = &rings[v] {
+                    for &u in ring {
+                        region[u as usize] = true;
+                    }
+                }
+            }
+            grown += 1;
+        }
+        let whole = (0..n).all(|v| region[v] || fixed[v] || rings[v].is_none());
+        pos.copy_from_slice(&original);
+        let movable: Vec<bool> = (0..n).map(|v| region[v] && !fixed[v] && rings[v].is_some()).collect();
+        let uniform = convex_combination_solve(pos, &rings, &movable);
+        let left = folded_faces(pos, faces).len();
+        if best.as_ref().map_or(true, |(b, ..)| left < *b) {
+            best = Some((left, pos.to_vec(), uniform));
+        }
+        if left == 0 || whole {
+            break;
+        }
+    }
+    if let Some((left, kept, uniform)) = best {
+        pos.copy_from_slice(&kept);
+        report.folded_after = left;
+        report.uniform_vertices = uniform;
+    }
+    report.max_displacement = pos
+        .iter()
+        .zip(&original)
+        .map(|(p, q)| ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt() / radius)
+        .fold(0.0, f64::max);
+    report
+}
+
+/// Solve for the `movable` vertices as convex combinations of their rings (mean value
+/// coordinates where the current position allows, uniform otherwise); returns how many got
+/// uniform weights. On a solver failure the positions are left unchanged.
+fn convex_combination_solve(pos: &mut [[f64; 2]], rings: &[Option<Vec<u32>>], movable: &[bool]) -> usize {
+    let n = pos.len();
     let mut index = vec![usize::MAX; n];
     let mut m = 0;
     for v in 0..n {
-        if !fixed[v] && rings[v].is_some() {
+        if movable[v] {
             index[v] = m;
             m += 1;
         }
     }
+    let mut uniform = 0;
     let mut trip = TripletList::with_capacity(m, 8 * m);
     let mut rhs = vec![vec![0.0; m], vec![0.0; m]];
     for v in 0..n {
@@ -115,7 +176,7 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
         }
         let poly: Vec<[f64; 2]> = ring.iter().map(|&u| pos[u as usize]).collect();
         let w = mean_value_weights(pos[v], &poly).unwrap_or_else(|| {
-            report.uniform_vertices += 1;
+            uniform += 1;
             vec![1.0; ring.len()]
         });
         let sum: f64 = w.iter().sum();
@@ -130,6 +191,9 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
             }
         }
     }
+    if m == 0 {
+        return uniform;
+    }
     let solved = trip.assemble("fold repair").and_then(|mat| {
         let mut solver = LuSolver::new();
         solver.factor(&mat, "fold repair")?;
@@ -139,13 +203,9 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
         for v in 0..n {
             let i = index[v];
             if i != usize::MAX {
-                let q = [rhs[0][i], rhs[1][i]];
-                let dd = ((q[0] - pos[v][0]).powi(2) + (q[1] - pos[v][1]).powi(2)).sqrt() / radius;
-                report.max_displacement = report.max_displacement.max(dd);
-                pos[v] = q;
+                pos[v] = [rhs[0][i], rhs[1][i]];
             }
         }
     }
-    report.folded_after = folded_faces(pos, faces).len();
-    report
+    uniform
 }

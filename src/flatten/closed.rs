@@ -80,23 +80,14 @@ pub fn flatten_closed(mesh: &TriMesh, options: &ClosedFlattenOptions) -> Result<
         .map(|(_, f)| *f)
         .collect();
     // Quad corners on the unit circle by arc length.
-    let q = puncture.quad;
-    let sides: Vec<f64> = (0..4).map(|k| norm(sub(mesh.vertices[q[(k + 1) % 4] as usize], mesh.vertices[q[k] as usize]))).collect();
-    let total: f64 = sides.iter().sum();
-    let mut acc = 0.0;
-    let mut fixed = Vec::with_capacity(4);
-    for k in 0..4 {
-        let t = 2.0 * PI * acc / total;
-        fixed.push((q[k], [t.cos(), t.sin()]));
-        acc += sides[k];
-    }
+    let fixed = on_circle_by_arc_length(&mesh.vertices, &puncture.quad);
     let n = mesh.n_vertices();
     let weights = cotangent_weights(&mesh.vertices, &faces);
     let (initial, _) = harmonic_extension(n, &faces, &weights, &fixed)?;
     let (sem, stretch) = stretch_energy_map(&mesh.vertices, &faces, &fixed, &initial, &options.stretch)?;
     let mu: Vec<[f64; 2]> = beltrami_coefficients(&mesh.vertices, &faces, &sem)
         .into_iter()
-        .map(|m| [options.lambda * m[0], options.lambda * m[1]])
+        .map(|m| scaled_coefficient(m, options.lambda))
         .collect();
     let uv = linear_beltrami_solver(&mesh.vertices, &faces, &mu, &fixed)?;
     let flipped_faces = count_flipped(&uv, &faces);
@@ -122,23 +113,46 @@ pub fn composite_disk_map(
     if m < 3 {
         return Err(FlattenError::BoundaryTooShort { len: m });
     }
-    let sides: Vec<f64> = (0..m).map(|k| norm(sub(vertices[boundary[(k + 1) % m] as usize], vertices[boundary[k] as usize]))).collect();
-    let total: f64 = sides.iter().sum();
-    let mut acc = 0.0;
-    let mut fixed = Vec::with_capacity(m);
-    for k in 0..m {
-        let t = 2.0 * PI * acc / total;
-        fixed.push((boundary[k], [t.cos(), t.sin()]));
-        acc += sides[k];
-    }
+    let fixed = on_circle_by_arc_length(vertices, boundary);
     let weights = cotangent_weights(vertices, faces);
     let (initial, _) = harmonic_extension(vertices.len(), faces, &weights, &fixed)?;
     let (sem, stretch) = stretch_energy_map(vertices, faces, &fixed, &initial, &options.stretch)?;
     let mu: Vec<[f64; 2]> = beltrami_coefficients(vertices, faces, &sem)
         .into_iter()
-        .map(|m| [options.lambda * m[0], options.lambda * m[1]])
+        .map(|m| scaled_coefficient(m, options.lambda))
         .collect();
     let uv = linear_beltrami_solver(vertices, faces, &mu, &fixed)?;
     let flipped_faces = count_flipped(&uv, faces);
     Ok((uv, ClosedFlattenReport { stretch, lambda: options.lambda, flipped_faces }))
+}
+
+/// `lambda * mu`, pulled back inside the unit disk where the stretch energy map folded a face
+/// (`|mu| >= 1`), so the Beltrami system stays elliptic.
+fn scaled_coefficient(mu: [f64; 2], lambda: f64) -> [f64; 2] {
+    let m = [lambda * mu[0], lambda * mu[1]];
+    let norm = (m[0] * m[0] + m[1] * m[1]).sqrt();
+    if norm < MAX_MU {
+        m
+    } else {
+        [m[0] * MAX_MU / norm, m[1] * MAX_MU / norm]
+    }
+}
+
+/// Largest `|mu|` handed to the Beltrami solver.
+const MAX_MU: f64 = 0.95;
+
+/// The vertices of a closed loop placed on the unit circle at angles proportional to the
+/// loop's arc length.
+pub fn on_circle_by_arc_length(vertices: &[[f64; 3]], boundary: &[u32]) -> Vec<(u32, [f64; 2])> {
+    let m = boundary.len();
+    let sides: Vec<f64> = (0..m).map(|k| norm(sub(vertices[boundary[(k + 1) % m] as usize], vertices[boundary[k] as usize]))).collect();
+    let total: f64 = sides.iter().sum();
+    let mut acc = 0.0;
+    let mut fixed = Vec::with_capacity(m);
+    for k in 0..m {
+        let t = if total > 0.0 { 2.0 * PI * acc / total } else { 2.0 * PI * k as f64 / m as f64 };
+        fixed.push((boundary[k], [t.cos(), t.sin()]));
+        acc += sides[k];
+    }
+    fixed
 }

@@ -2,7 +2,7 @@
 
 mod cli_progress;
 
-use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::cap::{parameterize, Domain, OpenInitialMap, ParamOptions, Smoothing};
 use capmesh::io;
 use capmesh::mesh;
 use clap::{Parser, Subcommand};
@@ -43,6 +43,20 @@ enum Command {
         /// Write a JSON report here.
         #[arg(long)]
         report: Option<PathBuf>,
+        /// Initial map of open surfaces: composite (default: stretch energy composed with
+        /// lambda*mu) or conformal (the paper's disk conformal map).
+        #[arg(long, default_value = "composite")]
+        initial: OpenInitialMap,
+        /// lambda of the closed-surface quasi-conformal composition (paper: 0.2).
+        #[arg(long, default_value_t = capmesh::flatten::closed::DEFAULT_LAMBDA)]
+        lambda: f64,
+        /// lambda of the composite initial map of open surfaces.
+        #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_OPEN_LAMBDA)]
+        open_lambda: f64,
+        /// Regularisation of the final centroid map: auto (default) or a strength >= 0
+        /// (0 is the paper's plain centroid map).
+        #[arg(long, default_value = "auto")]
+        smoothing: Smoothing,
     },
 }
 
@@ -103,11 +117,18 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             Ok(())
         }
-        Command::Param { input, output, domain, report } => {
+        Command::Param { input, output, domain, report, initial, lambda, open_lambda, smoothing } => {
             refuse_overwrite(&input, &output)?;
+            if let Some(r) = &report {
+                refuse_overwrite(&input, r)?;
+            }
             let m = read(&input)?;
             let bar = cli_progress::Bar::new(cli.quiet);
-            let options = ParamOptions::default().with_domain(domain);
+            let mut options = ParamOptions::default().with_domain(domain);
+            options.open_initial = initial;
+            options.closed.lambda = lambda;
+            options.open_lambda = open_lambda;
+            options.smoothing = smoothing;
             let map = parameterize(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
             bar.finish();
             io::write_mesh(&output, &map.cap_mesh(&m)).map_err(|e| e.to_string())?;

@@ -1,0 +1,118 @@
+//! The `capmesh` command line on real meshes: `param` writes the cap mesh and a JSON report
+//! with the documented keys; `check` describes good meshes and refuses bad ones with a
+//! message naming the problem; the input is never overwritten.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
+}
+
+fn capmesh() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_capmesh"))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("capmesh-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn param_writes_cap_mesh_and_report() {
+    let dir = temp_dir("param");
+    let out = dir.join("helmet_cap.ply");
+    let report = dir.join("report.json");
+    let input = data("open_meg_helmet_babysquid_mne.obj.gz");
+    let before = std::fs::read(&input).unwrap();
+    let status = capmesh()
+        .args(["param", "--quiet"])
+        .arg(&input)
+        .arg("-o")
+        .arg(&out)
+        .arg("--report")
+        .arg(&report)
+        .output()
+        .unwrap();
+    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+    assert_eq!(std::fs::read(&input).unwrap(), before, "input modified");
+    let json: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
+    for key in ["r_star", "z_star", "newton_iterations", "flipped_faces", "seconds"] {
+        assert!(json.get(key).is_some_and(|v| v.is_number()), "report lacks numeric {key}");
+    }
+    let mean_area = json["area_distortion"]["mean_abs"].as_f64().unwrap();
+    let mean_angle = json["angle_distortion"]["mean_abs"].as_f64().unwrap();
+    assert!(mean_area > 0.0 && mean_area < 0.12 && mean_angle > 0.0 && mean_angle < 1.0);
+    assert_eq!(json["flipped_faces"].as_u64(), Some(0));
+    // The written mesh has the input's connectivity and lies on the unit sphere above Z*.
+    let cap = capmesh::io::read_mesh(&out).unwrap();
+    let orig = capmesh::io::read_mesh(&input).unwrap();
+    assert_eq!(cap.faces, orig.faces);
+    let z_star = json["z_star"].as_f64().unwrap();
+    for p in &cap.vertices {
+        assert!(((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs() < 1e-9);
+        assert!(p[2] >= z_star - 1e-9);
+    }
+}
+
+#[test]
+fn param_refuses_to_overwrite_its_input() {
+    let dir = temp_dir("overwrite");
+    let copy = dir.join("helmet.obj.gz");
+    std::fs::copy(data("open_meg_helmet_babysquid_mne.obj.gz"), &copy).unwrap();
+    let before = std::fs::read(&copy).unwrap();
+    let out = capmesh().args(["param", "--quiet"]).arg(&copy).arg("-o").arg(&copy).output().unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("refusing to overwrite"));
+    assert_eq!(std::fs::read(&copy).unwrap(), before);
+}
+
+#[test]
+fn check_describes_an_open_disk() {
+    let out = capmesh().arg("check").arg(data("open_lv_endo_rabbit_chaste.obj.gz")).output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("vertices             4239"), "{text}");
+    assert!(text.contains("boundary loops       1"));
+    assert!(text.contains("Euler characteristic 1"));
+    assert!(text.contains("open disk"));
+}
+
+#[test]
+fn check_and_param_refuse_genus_two() {
+    for sub in ["check", "param"] {
+        let mut cmd = capmesh();
+        cmd.arg(sub).arg(data("bad_genus2_bird_skull_choi.obj.gz"));
+        if sub == "param" {
+            cmd.args(["--quiet", "-o"]).arg(temp_dir("g2").join("x.obj"));
+        }
+        let out = cmd.output().unwrap();
+        assert!(!out.status.success(), "{sub} accepted a genus-2 surface");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("genus 2") && err.contains("bad_genus2_bird_skull_choi"), "{sub}: {err}");
+    }
+}
+
+#[test]
+fn param_refuses_an_annulus_with_a_clear_message() {
+    let dir = temp_dir("annulus");
+    let path = dir.join("annulus.obj");
+    capmesh::io::write_mesh(&path, &capmesh::mesh::shapes::annulus(0.5, 1.0, 4, 24)).unwrap();
+    let out = capmesh().args(["param", "--quiet"]).arg(&path).arg("-o").arg(dir.join("o.obj")).output().unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("2 boundary loops"), "{err}");
+}
+
+#[test]
+fn truncated_file_is_refused_with_its_name() {
+    let dir = temp_dir("trunc");
+    let path = dir.join("cut.ply");
+    let bytes = capmesh::io::write_mesh_to_bytes(&capmesh::mesh::shapes::grid_disk(6), capmesh::io::Format::Ply).unwrap();
+    std::fs::write(&path, &bytes[..bytes.len() * 2 / 3]).unwrap();
+    let out = capmesh().arg("check").arg(&path).output().unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("cut.ply") && err.contains("truncated"), "{err}");
+}

@@ -1,0 +1,75 @@
+//! Quantities computed two ways: the stretch energy's gradient against finite differences,
+//! the linear Beltrami solver against a map with a known coefficient, and the disk conformal
+//! map's conformality on an analytic shape.
+
+use capmesh::flatten::beltrami::{beltrami_coefficients, linear_beltrami_solver};
+use capmesh::flatten::stretch_energy::{stretch_energy, stretch_gradient};
+use capmesh::flatten::{disk_conformal_map, DiskConformalOptions};
+use capmesh::mesh::shapes::{grid_disk, spherical_cap, spherical_cap_sectors};
+use capmesh::mesh::{validate, TriMesh};
+use capmesh::metrics::{beltrami_abs, Stats};
+
+/// A smooth non-conformal planar map of the unit disk.
+fn warp(p: [f64; 3]) -> [f64; 2] {
+    let (x, y) = (p[0], p[1]);
+    [x + 0.25 * x * y + 0.1 * y * y, 0.8 * y + 0.2 * x * x - 0.05 * x * y]
+}
+
+#[test]
+fn stretch_gradient_matches_finite_differences() {
+    let mesh = grid_disk(6);
+    let f: Vec<[f64; 2]> = mesh.vertices.iter().map(|&p| warp(p)).collect();
+    let g = stretch_gradient(&mesh.vertices, &mesh.faces, &f);
+    let h = 1e-6;
+    let mut worst: f64 = 0.0;
+    let scale = g.iter().map(|v| v[0].abs().max(v[1].abs())).fold(0.0, f64::max);
+    for v in (0..f.len()).step_by(3) {
+        for k in 0..2 {
+            let mut fp = f.clone();
+            fp[v][k] += h;
+            let mut fm = f.clone();
+            fm[v][k] -= h;
+            let fd = (stretch_energy(&mesh.vertices, &mesh.faces, &fp) - stretch_energy(&mesh.vertices, &mesh.faces, &fm)) / (2.0 * h);
+            worst = worst.max((fd - g[v][k]).abs());
+        }
+    }
+    assert!(scale > 0.0);
+    assert!(worst < 1e-6 * scale.max(1.0), "worst {worst:.3e} vs scale {scale:.3e}");
+}
+
+#[test]
+fn beltrami_solver_reproduces_a_map_from_its_own_coefficient() {
+    let mesh = grid_disk(8);
+    let (_, topo) = validate(&mesh).unwrap();
+    let target: Vec<[f64; 2]> = mesh.vertices.iter().map(|&p| warp(p)).collect();
+    let mu = beltrami_coefficients(&mesh.vertices, &mesh.faces, &target);
+    assert!(mu.iter().any(|m| m[0].hypot(m[1]) > 0.05), "test map should not be conformal");
+    let fixed: Vec<(u32, [f64; 2])> = topo.boundary_loops[0].iter().map(|&b| (b, target[b as usize])).collect();
+    let solved = linear_beltrami_solver(&mesh.vertices, &mesh.faces, &mu, &fixed).unwrap();
+    let err = solved
+        .iter()
+        .zip(&target)
+        .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+        .fold(0.0, f64::max);
+    assert!(err < 1e-9, "max error {err:.3e}");
+}
+
+#[test]
+fn disk_conformal_map_of_a_cap_is_conformal() {
+    // Stereographic projection maps the cap conformally onto a disk, so the discrete map
+    // must have small |mu| everywhere (up to discretization).
+    let mesh: TriMesh = spherical_cap(0.3, 20, spherical_cap_sectors(0.3, 20));
+    let (_, topo) = validate(&mesh).unwrap();
+    let (uv, report) = disk_conformal_map(&mesh.vertices, &mesh.faces, &topo.boundary_loops[0], &DiskConformalOptions::default()).unwrap();
+    assert_eq!(report.flipped_faces, 0);
+    let mu = Stats::of(mesh.faces.iter().map(|f| {
+        let [a, b, c] = f.map(|v| v as usize);
+        beltrami_abs([mesh.vertices[a], mesh.vertices[b], mesh.vertices[c]], [uv[a], uv[b], uv[c]])
+    }));
+    assert!(mu.mean_abs < 0.02 && mu.max_abs < 0.1, "{mu:?}");
+    // The boundary lies on the unit circle.
+    for &b in &topo.boundary_loops[0] {
+        let p = uv[b as usize];
+        assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-12);
+    }
+}
