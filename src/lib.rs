@@ -32,6 +32,7 @@ pub mod mesh;
 pub mod metrics;
 pub mod omt;
 pub mod progress;
+pub mod remesh;
 
 pub use cap::{parameterize, CapMap, Domain, ParamOptions, ParamReport};
 pub use error::{Error, Result};

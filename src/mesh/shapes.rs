@@ -297,3 +297,25 @@ pub fn torus(major: f64, minor: f64, n_major: usize, n_minor: usize) -> TriMesh 
     }
     TriMesh::new(vertices, faces)
 }
+
+/// Latitude/longitude mesh of the cap `z >= z0`: a vertex at the pole, `rings` rings equally
+/// spaced in polar angle (the last at `z = z0`), each with `sectors` vertices on the same
+/// meridians; each quad is split along its shorter diagonal, with a fan at the pole
+/// (paper Sec. 4.2, remeshing by latitude and longitude lines).
+pub fn lat_long_cap(z0: f64, rings: usize, sectors: usize) -> TriMesh {
+    let z0 = clamp_z0(z0);
+    let rings = rings.clamp(1, MAX_RINGS);
+    let sectors = sectors.clamp(3, MAX_SECTORS);
+    let theta_max = z0.acos();
+    let mut stack = vec![Ring { z: 1.0, radius: 0.0, count: 1 }];
+    for i in 1..=rings {
+        let (z, radius) = if i == rings {
+            (z0, ((1.0 - z0) * (1.0 + z0)).sqrt())
+        } else {
+            let t = theta_max * i as f64 / rings as f64;
+            (t.cos(), t.sin())
+        };
+        stack.push(Ring { z, radius, count: sectors });
+    }
+    ring_stack(&stack)
+}

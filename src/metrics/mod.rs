@@ -1,6 +1,9 @@
 //! Distortion and remeshing metrics, shared by the pipeline reports, the CLI, the tests and
 //! the benchmarks.
 
+pub mod closest;
 pub mod distortion;
+pub mod remeshing;
 
 pub use distortion::{angle_distortion, area_distortion, beltrami_abs, conformal_energy, Stats};
+pub use remeshing::{face_area_deviation, remesh_metrics, RemeshMetrics};

@@ -4,6 +4,7 @@ mod cli_progress;
 
 use capmesh::cap::{parameterize, Domain, OpenInitialMap, ParamOptions, Smoothing};
 use capmesh::io;
+use capmesh::remesh::{remesh, CapGrid, RemeshOptions};
 use capmesh::mesh;
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -58,6 +59,41 @@ enum Command {
         #[arg(long, default_value = "auto")]
         smoothing: Smoothing,
     },
+    /// Remesh an open surface through its adaptive cap: a uniform cap mesh of about N faces
+    /// (default) or a latitude/longitude mesh, pulled back by the inverse map.
+    Remesh {
+        /// Input mesh.
+        input: PathBuf,
+        /// Output mesh.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Target face count of the uniform cap mesh.
+        #[arg(long, default_value_t = 5000, conflicts_with = "lat_long")]
+        faces: usize,
+        /// Use a latitude/longitude mesh instead.
+        #[arg(long)]
+        lat_long: bool,
+        /// Latitude rings (with --lat-long).
+        #[arg(long, default_value_t = 40, requires = "lat_long")]
+        rings: usize,
+        /// Longitude sectors (with --lat-long).
+        #[arg(long, default_value_t = 64, requires = "lat_long")]
+        sectors: usize,
+        /// Write a JSON report here.
+        #[arg(long)]
+        report: Option<PathBuf>,
+    },
+    /// Remeshing metrics of any remeshed surface against its original: d_face, surface
+    /// distances, minimum angle.
+    Metrics {
+        /// The original mesh.
+        original: PathBuf,
+        /// The remeshed mesh.
+        remeshed: PathBuf,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 fn main() -> ExitCode {
@@ -87,8 +123,74 @@ fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(), String> 
     std::fs::write(path, text + "\n").map_err(|e| format!("cannot write report {}: {e}", path.display()))
 }
 
+fn print_quality(q: &capmesh::metrics::RemeshMetrics) {
+    println!("faces                      {}", q.faces);
+    println!("d_face                     {:.6e}", q.d_face);
+    println!("d_face_relative            {:.4}", q.d_face_relative);
+    println!("d_surface_vertex           {:.6e} ({:.3e} of the diagonal)", q.d_surface_vertex, q.d_surface_vertex_relative);
+    println!("d_surface_sampled          {:.6e} ({:.3e} of the diagonal)", q.d_surface_sampled, q.d_surface_sampled_relative);
+    println!("min_angle_deg              {:.2}", q.min_angle_deg);
+}
+
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
+        Command::Remesh { input, output, faces, lat_long, rings, sectors, report } => {
+            refuse_overwrite(&input, &output)?;
+            if let Some(r) = &report {
+                refuse_overwrite(&input, r)?;
+            }
+            let m = read(&input)?;
+            let bar = cli_progress::Bar::new(cli.quiet);
+            let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
+            let options = RemeshOptions { grid, ..Default::default() };
+            let (out, rep) = remesh(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
+            bar.finish();
+            io::write_mesh(&output, &out).map_err(|e| e.to_string())?;
+            println!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
+            print_quality(&rep.quality);
+            if let Some(path) = report {
+                #[derive(serde::Serialize)]
+                struct Flat<'a> {
+                    faces: usize,
+                    d_face: f64,
+                    d_face_relative: f64,
+                    d_surface_vertex: f64,
+                    d_surface_sampled: f64,
+                    d_surface_vertex_relative: f64,
+                    d_surface_sampled_relative: f64,
+                    min_angle_deg: f64,
+                    seconds: f64,
+                    parameterization: &'a capmesh::ParamReport,
+                }
+                let q = &rep.quality;
+                write_json(
+                    &path,
+                    &Flat {
+                        faces: q.faces,
+                        d_face: q.d_face,
+                        d_face_relative: q.d_face_relative,
+                        d_surface_vertex: q.d_surface_vertex,
+                        d_surface_sampled: q.d_surface_sampled,
+                        d_surface_vertex_relative: q.d_surface_vertex_relative,
+                        d_surface_sampled_relative: q.d_surface_sampled_relative,
+                        min_angle_deg: q.min_angle_deg,
+                        seconds: rep.seconds,
+                        parameterization: &rep.param,
+                    },
+                )?;
+            }
+            Ok(())
+        }
+        Command::Metrics { original, remeshed, json } => {
+            let (a, b) = (read(&original)?, read(&remeshed)?);
+            let q = capmesh::metrics::remesh_metrics(&a, &b);
+            if json {
+                println!("{}", serde_json::to_string_pretty(&q).map_err(|e| e.to_string())?);
+            } else {
+                print_quality(&q);
+            }
+            Ok(())
+        }
         Command::Check { input, json } => {
             let m = read(&input)?;
             let summary = mesh::inspect(&m).map_err(|e| format!("{}: {e}", input.display()))?;
