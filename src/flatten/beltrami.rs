@@ -9,7 +9,7 @@
 //! is the cotangent Laplacian. The P1 stiffness matrix is symmetric positive definite once
 //! some vertices are fixed.
 
-use super::FlattenError;
+use super::{pin, FlattenError};
 use crate::linalg::{SpdSolver, TripletList};
 use crate::mesh::geometry::{cross, dot, norm, sub};
 
@@ -76,19 +76,7 @@ pub fn linear_beltrami_solver(
 ) -> Result<Vec<[f64; 2]>, FlattenError> {
     let n = vertices.len();
     let mut pos = vec![[0.0; 2]; n];
-    let mut is_fixed = vec![false; n];
-    for &(v, p) in fixed {
-        pos[v as usize] = p;
-        is_fixed[v as usize] = true;
-    }
-    let mut index = vec![usize::MAX; n];
-    let mut n_free = 0;
-    for v in 0..n {
-        if !is_fixed[v] {
-            index[v] = n_free;
-            n_free += 1;
-        }
-    }
+    let (is_fixed, index, n_free) = pin(&mut pos, fixed);
     let mut trip = TripletList::with_capacity(n_free, 9 * faces.len());
     let mut rhs = vec![vec![0.0; n_free], vec![0.0; n_free]];
     for (f, m) in faces.iter().zip(mu) {

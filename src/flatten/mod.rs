@@ -45,3 +45,23 @@ pub enum FlattenError {
         len: usize,
     },
 }
+
+/// Put the `fixed` vertices at their positions in `pos`; return the fixed mask, a compact
+/// numbering of the free vertices (`usize::MAX` for fixed ones) and their count.
+pub(crate) fn pin(pos: &mut [[f64; 2]], fixed: &[(u32, [f64; 2])]) -> (Vec<bool>, Vec<usize>, usize) {
+    let n = pos.len();
+    let mut is_fixed = vec![false; n];
+    for &(v, p) in fixed {
+        pos[v as usize] = p;
+        is_fixed[v as usize] = true;
+    }
+    let mut index = vec![usize::MAX; n];
+    let mut n_free = 0;
+    for v in 0..n {
+        if !is_fixed[v] {
+            index[v] = n_free;
+            n_free += 1;
+        }
+    }
+    (is_fixed, index, n_free)
+}

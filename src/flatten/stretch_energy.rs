@@ -9,7 +9,7 @@
 //! `(f_i - f_k) . (f_j - f_k) / (4 |T|)`, defined even for folded image faces. The
 //! minimiser is found by the fixed-point iteration `L_S(f^k)_II f^{k+1}_I = -L_S(f^k)_IB f_B`.
 
-use super::FlattenError;
+use super::{pin, FlattenError};
 use crate::linalg::{SpdSolver, TripletList};
 use crate::mesh::geometry::{signed_area_2d, triangle_area};
 
@@ -98,19 +98,7 @@ pub fn stretch_energy_map(
 ) -> Result<(Vec<[f64; 2]>, StretchReport), FlattenError> {
     let n = vertices.len();
     let mut f = initial.to_vec();
-    let mut is_fixed = vec![false; n];
-    for &(v, p) in fixed {
-        f[v as usize] = p;
-        is_fixed[v as usize] = true;
-    }
-    let mut index = vec![usize::MAX; n];
-    let mut n_free = 0;
-    for v in 0..n {
-        if !is_fixed[v] {
-            index[v] = n_free;
-            n_free += 1;
-        }
-    }
+    let (is_fixed, index, n_free) = pin(&mut f, fixed);
     let surface_area: f64 = faces.iter().map(|t| triangle_area(vertices[t[0] as usize], vertices[t[1] as usize], vertices[t[2] as usize])).sum();
     let ratio = |f: &[[f64; 2]]| {
         let img: f64 = faces.iter().map(|t| signed_area_2d(f[t[0] as usize], f[t[1] as usize], f[t[2] as usize])).sum();
