@@ -26,6 +26,7 @@
 pub mod cap;
 pub mod error;
 pub mod flatten;
+pub mod harmonics;
 pub mod io;
 pub mod linalg;
 pub mod mesh;
