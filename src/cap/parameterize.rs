@@ -10,13 +10,13 @@ use super::brent;
 use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
 use super::planar_transport::{PlanarTransport, TransportMap};
 use super::regularize::{regularise, Smoothing, SmoothingTrial};
-use super::untangle::{folded_faces, UntangleReport};
+use super::untangle::UntangleReport;
 use super::stereographic::{inverse_stereographic, radius_of_z_star, z_star_of_radius};
 use crate::error::Error;
 use crate::flatten::closed::{composite_disk_map, flatten_closed, ClosedFlattenOptions, ClosedFlattenReport};
 use crate::flatten::puncture::Puncture;
 use crate::flatten::{disk_conformal_map, DiskConformalOptions, DiskConformalReport};
-use crate::mesh::geometry::vertex_areas;
+use crate::mesh::geometry::{folded_faces, lift, vertex_areas};
 use crate::mesh::{repair, validate, SurfaceKind, TriMesh};
 use crate::linalg::cotangent_weights;
 use crate::metrics::{angle_distortion, area_distortion, conformal_energy, Stats};
@@ -265,7 +265,7 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
     let transport_seconds = t_ot.elapsed().as_secs_f64();
     let to_cap = |p: &[[f64; 2]]| -> Vec<[f64; 3]> {
         if options.domain == Domain::Disk {
-            p.iter().map(|q| [q[0], q[1], 0.0]).collect()
+            lift(p)
         } else {
             p.iter().map(|&q| inverse_stereographic(q)).collect()
         }

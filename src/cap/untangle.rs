@@ -12,17 +12,7 @@
 //! valid it changes only near the folds.
 
 use crate::linalg::{LuSolver, TripletList};
-use crate::mesh::geometry::signed_area_2d;
-
-/// Faces with non-positive signed area.
-pub fn folded_faces(pos: &[[f64; 2]], faces: &[[u32; 3]]) -> Vec<usize> {
-    faces
-        .iter()
-        .enumerate()
-        .filter(|(_, f)| signed_area_2d(pos[f[0] as usize], pos[f[1] as usize], pos[f[2] as usize]) <= 0.0)
-        .map(|(i, _)| i)
-        .collect()
-}
+use crate::mesh::geometry::folded_faces;
 
 /// What the repair did.
 #[derive(Debug, Clone, Copy, Default, serde::Serialize)]

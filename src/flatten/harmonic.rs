@@ -8,7 +8,7 @@
 
 use super::FlattenError;
 use crate::linalg::{CotanWeights, SpdSolver};
-use crate::mesh::geometry::signed_area_2d;
+use crate::mesh::geometry::folded_faces;
 
 /// Which weights the harmonic extension ended up using.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -21,10 +21,7 @@ pub enum HarmonicWeights {
 
 /// Number of faces with non-positive signed area in the planar map `uv`.
 pub fn count_flipped(uv: &[[f64; 2]], faces: &[[u32; 3]]) -> usize {
-    faces
-        .iter()
-        .filter(|f| signed_area_2d(uv[f[0] as usize], uv[f[1] as usize], uv[f[2] as usize]) <= 0.0)
-        .count()
+    folded_faces(uv, faces).len()
 }
 
 /// Extend the boundary positions `fixed` (vertex, position) harmonically to all vertices.

@@ -91,6 +91,16 @@ pub fn vertex_areas(vertices: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<f64> {
     out
 }
 
+/// Faces of a planar map with non-positive signed area (folded or degenerate).
+pub fn folded_faces(uv: &[[f64; 2]], faces: &[[u32; 3]]) -> Vec<usize> {
+    faces
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| signed_area_2d(uv[f[0] as usize], uv[f[1] as usize], uv[f[2] as usize]) <= 0.0)
+        .map(|(i, _)| i)
+        .collect()
+}
+
 /// Lift planar points to `z = 0`.
 pub fn lift(points: &[[f64; 2]]) -> Vec<[f64; 3]> {
     points.iter().map(|p| [p[0], p[1], 0.0]).collect()
