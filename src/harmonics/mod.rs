@@ -8,6 +8,7 @@
 //! fit        : C = argmin |A C - V| by Householder QR, all orders at once     (Eq. 26-28)
 //! shape      : aspect ratio sigma_1 / sigma_3 of the order-1 representation    (Eq. 29)
 //! quadrature : Gauss-Legendre rules, to integrate over the cap in cos(theta)
+//! pipeline   : analyze = parameterize + fit + errors per order + aspect ratios
 //! ```
 //!
 //! The basis is orthonormal for `integral f g d(cos theta) d(phi)` over `[Z*, 1] x [-pi, pi]`,
@@ -32,12 +33,14 @@ pub mod basis;
 pub mod error;
 pub mod fit;
 pub mod legendre;
+pub mod pipeline;
 pub mod quadrature;
 pub mod shape;
 
 pub use basis::{basis_degree, basis_index, basis_len, CapBasis};
 pub use error::HarmonicsError;
-pub use fit::{fit, fit_all_orders, HarmonicFit, OrderError};
+pub use fit::{fit, fit_all_orders, order_errors, HarmonicFit, OrderError};
+pub use pipeline::{analyze, analyze_map, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
 pub use legendre::{associated_legendre, normalized_legendre, NormalizedLegendre};
 pub use quadrature::gauss_legendre;
 pub use shape::{aspect_ratio, order_one_ellipsoid, AspectRatio, OrderOneEllipsoid};
