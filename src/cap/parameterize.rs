@@ -187,6 +187,10 @@ pub struct ParamReport {
     pub flatten_seconds: f64,
     /// Seconds spent in transport solves (radius search included).
     pub transport_seconds: f64,
+    /// Seconds spent in the regularisation trials and fold repair.
+    pub regularise_seconds: f64,
+    /// Seconds spent in the face-level area refinement.
+    pub refine_seconds: f64,
 }
 
 /// A parameterization onto the cap (or the planar disk).
@@ -289,11 +293,16 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
             p.iter().map(|&q| inverse_stereographic(q)).collect()
         }
     };
+    let t_reg = Instant::now();
     let cot = cotangent_weights(&work.vertices, &faces);
     let chosen = regularise(&transported, &work.vertices, &faces, &cot, &on_boundary, radius, options.smoothing, &to_cap).map_err(OmtError::Linear)?;
     let (kappa, mut plane, untangle_report, trials) = (chosen.kappa, chosen.positions, chosen.untangle, chosen.trials);
     let lift_one = |q: [f64; 2]| if options.domain == Domain::Disk { [q[0], q[1], 0.0] } else { inverse_stereographic(q) };
+    let regularise_seconds = t_reg.elapsed().as_secs_f64();
+    progress::check(progress, Stage::Project, 0.0, "area refinement")?;
+    let t_refine = Instant::now();
     let refinement = refine_areas(&mut plane, &work.vertices, &faces, &on_boundary, &lift_one, options.area_refinement);
+    let refine_seconds = t_refine.elapsed().as_secs_f64();
     progress::check(progress, Stage::Project, 0.0, "inverse stereographic projection")?;
     let cap_work = to_cap(&plane);
     let flipped_faces = folded_faces(&plane, &faces).len();
@@ -322,6 +331,8 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
         seconds: start.elapsed().as_secs_f64(),
         flatten_seconds,
         transport_seconds,
+        regularise_seconds,
+        refine_seconds,
     };
     // Back to the input's vertex numbering; vertices no face uses go to the origin.
     let plane_all = welded.old_to_new.iter().map(|&v| plane.get(v as usize).copied().unwrap_or([0.0; 2])).collect();
