@@ -199,6 +199,10 @@ def write_report(rows):
         lines.append("![time, d_face, d_surface per mesh and method](meshlab_compare.png)")
     except Exception as e:
         lines.append(f"(plots not made: {e})")
+    notes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "meshlab_compare_notes.md")
+    if os.path.exists(notes):
+        with open(notes) as f:
+            lines += ["", f.read().rstrip()]
     with open(os.path.join(RESULTS, "meshlab_compare.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
