@@ -16,7 +16,10 @@ use crate::mesh::geometry::{signed_area_2d, triangle_area};
 /// Options of the stretch energy minimisation.
 #[derive(Debug, Clone)]
 pub struct StretchOptions {
-    /// Maximum fixed-point iterations. Default 100.
+    /// Maximum fixed-point iterations. Default 25: each costs a sparse factorization, and
+    /// beyond 10-25 iterations the final cap map no longer changes measurably (hand: mean
+    /// |d_area| 0.0295 at 10, 0.0280 at 25, 0.0298 at 100; 12k brain 0.0128 / 0.0128 /
+    /// 0.0127), while 100 iterations took 24 of the hand's 39 seconds.
     pub max_iterations: usize,
     /// Stop when the relative energy decrease falls below this. Default `1e-6`.
     pub tolerance: f64,
@@ -24,7 +27,7 @@ pub struct StretchOptions {
 
 impl Default for StretchOptions {
     fn default() -> Self {
-        Self { max_iterations: 100, tolerance: 1e-6 }
+        Self { max_iterations: 25, tolerance: 1e-6 }
     }
 }
 
