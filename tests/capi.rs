@@ -191,7 +191,7 @@ fn the_progress_callback_reports_and_cancels() {
     }
 }
 
-/// A small valid open mesh: a square of two triangles... made of a 3x3 grid (8 faces).
+/// A small valid open mesh: a 3 x 3 vertex grid in the plane (8 triangles).
 fn grid() -> Arrays {
     let mut positions = vec![];
     for j in 0..3 {
