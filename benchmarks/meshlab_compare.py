@@ -34,6 +34,12 @@ MESHES = [
     "open_lv_endo_rabbit_chaste",
     "open_meg_helmet_babysquid_mne",
     "open_hand_choi",
+    "closed_bunny_npm",
+    "closed_hippocampus_choi",
+    "closed_brain12k_choi",
+    "closed_lung_rml_chaste",
+    "closed_bird_skull_CPallidusA_choi",
+    "closed_brain_choi",
 ]
 
 
@@ -139,9 +145,10 @@ def write_report(rows):
         "All outputs scored by `capmesh metrics` against the input. d_face_rel = mean |area - mean| / mean area;",
         "d_surf = symmetric face-sampled distance / bounding-box diagonal; seconds exclude file I/O for MeshLab",
         "and include the whole CLI run (parameterization, remeshing, metrics) for capmesh.",
-        "Uniform resampling, RIMLS and screened Poisson reconstruct closed surfaces from these open inputs;",
-        "their faces farther than 1% of the diagonal from the input are trimmed, then quadric decimation",
-        "brings them to the target.",
+        "Uniform resampling, RIMLS and screened Poisson reconstruct closed surfaces, also from the open",
+        "inputs; their faces farther than 1% of the diagonal from the input are trimmed (which removes the",
+        "spurious closing sheet of an open input), then quadric decimation brings them to the target.",
+        "capmesh returns an open disk for an open input and a closed genus-0 mesh for a closed one.",
         "",
         "| mesh | method | faces | d_face_rel | d_surf (rel.) | min angle | seconds |",
         "|---|---|---:|---:|---:|---:|---:|",
@@ -183,7 +190,7 @@ def write_report(rows):
                     vals.append(v)
                 ax.bar([i + k * width for i in range(len(meshes))], vals, width, label=meth)
             ax.set_xticks([i + 0.4 for i in range(len(meshes))])
-            ax.set_xticklabels([m.replace("open_", "").split("_")[0] for m in meshes], rotation=30)
+            ax.set_xticklabels([m.split("_")[0][0] + ":" + m.split("_")[1] for m in meshes], rotation=30)
             ax.set_yscale("log")
             ax.set_title(label)
         axes[0].legend(fontsize=7)

@@ -70,6 +70,6 @@ fn main() {
     ];
     println!("### Open surfaces: mean |d_area| / mean |d_angle| (radians)\n");
     table(&open, &[(Domain::Adaptive, "adaptive"), (Domain::Disk, "disk OMT"), (Domain::Hemisphere, "hemisphere")]);
-    println!("\n### Closed surfaces (experimental, issue 3): mean |d_area| / mean |d_angle| (radians)\n");
+    println!("\n### Closed surfaces: mean |d_area| / mean |d_angle| (radians)\n");
     table(&closed, &[(Domain::Adaptive, "adaptive"), (Domain::Sphere, "sphere"), (Domain::Hemisphere, "hemisphere")]);
 }

@@ -13,6 +13,7 @@
 //!   -> omt       : h_r on the disk of radius r     (Sec. 2.2, 3.1.2)
 //!   -> cap       : r* by Brent's method, phi^-1    (Sec. 3.1.2-3.1.3, Eq. 12-14)
 //!   -> metrics   : d_area, d_angle, |mu|           (Sec. 4.1)
+//!   -> harmonics : adaptive harmonics fit, reconstruction, N = 1 aspect ratio (Sec. 3.3)
 //! ```
 //!
 //! ```no_run

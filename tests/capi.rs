@@ -293,13 +293,19 @@ fn misuse_returns_errors_with_a_message() {
 }
 
 #[test]
-fn closed_surfaces_are_not_remeshed_yet() {
+fn closed_surfaces_remesh_into_closed_meshes() {
     let input = read("closed_bunny_npm.obj.gz");
     let arrays = Arrays::of(&input);
-    let mut out = null_mut();
+    let (mut out, mut report) = (null_mut(), null_mut());
     let mut o = capmesh_v1_remesh_options_default();
-    o.param.smoothing = 0.0;
-    let status = unsafe { capmesh_v1_remesh(&arrays.view(), &o, None, null_mut(), &mut out, null_mut()) };
-    expect(status, CAPMESH_V1_UNSUPPORTED, "closed");
-    assert!(out.is_null());
+    o.faces = 2000;
+    let status = unsafe { capmesh_v1_remesh(&arrays.view(), &o, None, null_mut(), &mut out, &mut report) };
+    assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+    let remeshed = take_mesh(out);
+    let report: serde_json::Value = serde_json::from_str(&take_string(report)).unwrap();
+    let faces = remeshed.n_faces() as f64;
+    println!("bunny: {faces} faces for 2000 asked, d_face_relative {}", report["quality"]["d_face_relative"]);
+    assert!((faces - 2000.0).abs() <= 200.0, "{faces} faces for 2000 asked");
+    let summary = capmesh::mesh::inspect(&remeshed).unwrap();
+    assert_eq!(summary.kind, Some(capmesh::mesh::SurfaceKind::ClosedSphere));
 }

@@ -154,6 +154,10 @@ fn harmonics_refuses_bad_requests_before_any_work() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("helmet.obj.gz") && err.contains("2171 points for 40401 basis functions"), "{err}");
     assert!(!target.exists());
+    // An output format that cannot be written is refused up front.
+    let out = capmesh().args(["harmonics", "--quiet"]).arg(&copy).arg("-o").arg(dir.join("out.xyz")).output().unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("out.xyz: unknown mesh format"));
     // The planar disk has no cap to put harmonics on.
     let out = capmesh().args(["harmonics", "--quiet", "--domain", "disk"]).arg(&copy).arg("-o").arg(&target).output().unwrap();
     assert!(!out.status.success());

@@ -112,7 +112,7 @@ enum capmesh_v1_status
    */
   CAPMESH_V1_NUMERICAL = 3,
   /**
-   * Valid input asking for something not supported (e.g. remeshing a closed surface).
+   * Valid input asking for something not supported.
    */
   CAPMESH_V1_UNSUPPORTED = 4,
   /**
@@ -254,11 +254,12 @@ extern "C" {
 capmesh_v1_status capmesh_v1_parameterize(const struct capmesh_v1_mesh_view *mesh, const struct capmesh_v1_param_options *options, capmesh_v1_progress_fn progress, void *user_data, struct capmesh_v1_mesh **out_cap, char **out_report_json);
 
 /**
- * Remesh an open disk-like `mesh` through its cap: a uniform or latitude/longitude cap mesh
- * pulled back onto the surface. `options` NULL means defaults (uniform, 5000 faces). On
- * success `*out_mesh` is the new mesh and `*out_report_json` (unless NULL) the JSON report
- * (`param`, `quality` with `faces`, `d_face_relative`, `d_surface_sampled_relative`, ...,
- * `seconds`). Closed surfaces give `CAPMESH_V1_UNSUPPORTED`.
+ * Remesh `mesh` through its cap: a uniform or latitude/longitude cap mesh pulled back onto the
+ * surface (an open disk gives an open disk, a closed genus-0 surface a closed genus-0 mesh;
+ * the pulled-back areas are equalized with the library's default sweeps). `options` NULL
+ * means defaults (uniform, 5000 faces). On success `*out_mesh` is the new mesh and
+ * `*out_report_json` (unless NULL) the JSON report (`param`, `area_equalization`, `quality`
+ * with `faces`, `d_face_relative`, `d_surface_sampled_relative`, ..., `seconds`).
  *
  * # Safety
  * As `capmesh_v1_parameterize`.

@@ -1,8 +1,10 @@
 //! The cap: stereographic projection, the radius search and the whole parameterization
 //! (paper Sec. 3.1.2-3.1.3 and 3.2).
 
+pub mod area_refine;
 pub mod brent;
 pub mod domain;
+pub mod kernel_untangle;
 pub mod parameterize;
 pub mod planar_transport;
 pub mod regularize;

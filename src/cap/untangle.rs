@@ -11,6 +11,7 @@
 //! result is an embedding (Tutte 1963, Floater 2003), and where the transport map was already
 //! valid it changes only near the folds.
 
+use super::kernel_untangle::kernel_untangle;
 use crate::linalg::{LuSolver, TripletList};
 use crate::mesh::geometry::folded_faces;
 
@@ -19,6 +20,8 @@ use crate::mesh::geometry::folded_faces;
 pub struct UntangleReport {
     /// Folded faces before the repair.
     pub folded_before: usize,
+    /// Single-vertex moves into one-ring kernels (the first, local stage).
+    pub kernel_moves: usize,
     /// Vertices whose position was not a positive combination of their neighbours (they got
     /// uniform weights).
     pub uniform_vertices: usize,
@@ -82,7 +85,8 @@ fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
 /// Unfold `pos` in place if any face is folded. `fixed[v]` marks vertices that must not move
 /// (the boundary, on the circle of radius `radius`).
 ///
-/// The convex-combination solve is local first: only vertices within `k` rings of a folded
+/// First single vertices move into the kernels of their rings ([`kernel_untangle`]); folds
+/// that this leaves are handled by the convex-combination solve, local first: only vertices within `k` rings of a folded
 /// face move (the rest act as its boundary), with `k = 2, 4, 8, ...` until no fold is left;
 /// the last resort is the whole mesh with the fixed boundary. The attempt with the fewest
 /// folds left is kept (with only a few fixed vertices, as on a punctured closed surface, the
@@ -95,6 +99,13 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
     }
     let n = pos.len();
     let rings = ordered_rings(n, faces);
+    let start = pos.to_vec();
+    report.kernel_moves = kernel_untangle(pos, faces, &rings, fixed);
+    let folded = folded_faces(pos, faces);
+    if folded.is_empty() {
+        report.max_displacement = max_displacement(pos, &start, radius);
+        return report;
+    }
     let original = pos.to_vec();
     let mut region = vec![false; n];
     for &f in &folded {
@@ -135,12 +146,13 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
         report.folded_after = left;
         report.uniform_vertices = uniform;
     }
-    report.max_displacement = pos
-        .iter()
-        .zip(&original)
-        .map(|(p, q)| ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt() / radius)
-        .fold(0.0, f64::max);
+    report.max_displacement = max_displacement(pos, &start, radius);
     report
+}
+
+/// Largest distance between `a` and `b`, relative to `radius`.
+fn max_displacement(a: &[[f64; 2]], b: &[[f64; 2]], radius: f64) -> f64 {
+    a.iter().zip(b).map(|(p, q)| ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt() / radius).fold(0.0, f64::max)
 }
 
 /// Solve for the `movable` vertices as convex combinations of their rings (mean value

@@ -60,11 +60,12 @@ pub unsafe extern "C" fn capmesh_v1_parameterize(
     })
 }
 
-/// Remesh an open disk-like `mesh` through its cap: a uniform or latitude/longitude cap mesh
-/// pulled back onto the surface. `options` NULL means defaults (uniform, 5000 faces). On
-/// success `*out_mesh` is the new mesh and `*out_report_json` (unless NULL) the JSON report
-/// (`param`, `quality` with `faces`, `d_face_relative`, `d_surface_sampled_relative`, ...,
-/// `seconds`). Closed surfaces give `CAPMESH_V1_UNSUPPORTED`.
+/// Remesh `mesh` through its cap: a uniform or latitude/longitude cap mesh pulled back onto the
+/// surface (an open disk gives an open disk, a closed genus-0 surface a closed genus-0 mesh;
+/// the pulled-back areas are equalized with the library's default sweeps). `options` NULL
+/// means defaults (uniform, 5000 faces). On success `*out_mesh` is the new mesh and
+/// `*out_report_json` (unless NULL) the JSON report (`param`, `area_equalization`, `quality`
+/// with `faces`, `d_face_relative`, `d_surface_sampled_relative`, ..., `seconds`).
 ///
 /// # Safety
 /// As `capmesh_v1_parameterize`.

@@ -23,7 +23,7 @@ pub enum capmesh_v1_status {
     CAPMESH_V1_INVALID_MESH = 2,
     /// A solver failed (transport did not converge, singular system, ...).
     CAPMESH_V1_NUMERICAL = 3,
-    /// Valid input asking for something not supported (e.g. remeshing a closed surface).
+    /// Valid input asking for something not supported.
     CAPMESH_V1_UNSUPPORTED = 4,
     /// The progress callback returned nonzero.
     CAPMESH_V1_CANCELLED = 5,

@@ -8,6 +8,7 @@
 //! fit        : C = argmin |A C - V| by Householder QR, all orders at once     (Eq. 26-28)
 //! shape      : aspect ratio sigma_1 / sigma_3 of the order-1 representation    (Eq. 29)
 //! quadrature : Gauss-Legendre rules, to integrate over the cap in cos(theta)
+//! pipeline   : analyze = parameterize + fit + errors per order + aspect ratios
 //! ```
 //!
 //! The basis is orthonormal for `integral f g d(cos theta) d(phi)` over `[Z*, 1] x [-pi, pi]`,

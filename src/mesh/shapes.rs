@@ -298,6 +298,24 @@ pub fn torus(major: f64, minor: f64, n_major: usize, n_minor: usize) -> TriMesh 
     TriMesh::new(vertices, faces)
 }
 
+/// Flat disk `z = z0` of the given `radius`, its rim a ring of `rim` vertices at the angles
+/// [`spherical_cap`] and [`lat_long_cap`] use for their boundary ring (vertex 0 at angle 0),
+/// laid out last. Concentric rings with counts growing with the radius keep the triangles
+/// near-equilateral. Faces are counter-clockwise seen from `-z` (the outside of a cap's
+/// bottom). `rim >= 3`.
+pub fn flat_disk_below(z0: f64, radius: f64, rim: usize) -> TriMesh {
+    let rim = rim.clamp(3, MAX_SECTORS);
+    let inner = ((rim as f64 / TAU).floor() as usize).min(MAX_RINGS);
+    let mut stack = vec![Ring { z: z0, radius: 0.0, count: 1 }];
+    for j in 1..=inner {
+        let t = j as f64 / (inner + 1) as f64;
+        stack.push(Ring { z: z0, radius: radius * t, count: ((rim as f64 * t).round() as usize).max(3) });
+    }
+    stack.push(Ring { z: z0, radius, count: rim });
+    let up = ring_stack(&stack);
+    TriMesh::new(up.vertices, up.faces.into_iter().map(|f| [f[0], f[2], f[1]]).collect())
+}
+
 /// Latitude/longitude mesh of the cap `z >= z0`: a vertex at the pole, `rings` rings equally
 /// spaced in polar angle (the last at `z = z0`), each with `sectors` vertices on the same
 /// meridians; each quad is split along its shorter diagonal, with a fan at the pole

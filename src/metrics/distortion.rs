@@ -123,6 +123,29 @@ pub fn conformal_energy(surface: &[[f64; 3]], plane: &[[f64; 2]], faces: &[[u32;
     }
 }
 
+/// The mean of `|mu|^2` weighted by surface face area: the radius objective of punctured
+/// closed surfaces, whose planar map has faces spanning the circular segments of the rim
+/// (tiny on the surface, a third of the disk in the plane) that would dominate the
+/// planar-area weighting of [`conformal_energy`].
+pub fn conformal_energy_surface_weighted(surface: &[[f64; 3]], plane: &[[f64; 2]], faces: &[[u32; 3]]) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    for f in faces {
+        let [a, b, c] = f.map(|v| v as usize);
+        let p = [surface[a], surface[b], surface[c]];
+        let area = crate::mesh::geometry::triangle_area(p[0], p[1], p[2]);
+        let mu = beltrami_abs(p, [plane[a], plane[b], plane[c]]);
+        if mu.is_finite() {
+            num += mu * mu * area;
+            den += area;
+        }
+    }
+    if den > 0.0 {
+        num / den
+    } else {
+        f64::INFINITY
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

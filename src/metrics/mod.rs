@@ -5,5 +5,5 @@ pub mod closest;
 pub mod distortion;
 pub mod remeshing;
 
-pub use distortion::{angle_distortion, area_distortion, beltrami_abs, conformal_energy, Stats};
+pub use distortion::{angle_distortion, area_distortion, beltrami_abs, conformal_energy, conformal_energy_surface_weighted, Stats};
 pub use remeshing::{face_area_deviation, remesh_metrics, RemeshMetrics};

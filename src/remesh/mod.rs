@@ -1,10 +1,12 @@
 //! Remeshing through the cap (paper Sec. 4.2): parameterize, build a uniform or
 //! latitude/longitude mesh of the cap `Z >= Z*`, pull it back onto the surface.
 
+pub mod equalize;
 pub mod grid;
 pub mod locate;
 pub mod pullback;
 
+use crate::cap::area_refine::AreaRefineReport;
 use crate::cap::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
 use crate::mesh::{SurfaceKind, TriMesh};
@@ -36,12 +38,24 @@ impl Default for CapGrid {
 }
 
 /// Options of [`remesh`].
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct RemeshOptions {
     /// The cap mesh. Default uniform with 5000 faces.
     pub grid: CapGrid,
     /// Parameterization options (adaptive cap by default).
     pub param: ParamOptions,
+    /// Sweeps of the area equalization of the pulled-back mesh (see [`equalize`]); 0 pulls
+    /// the cap mesh back as the paper does. Default [`DEFAULT_AREA_EQUALIZATION`].
+    pub area_equalization: usize,
+}
+
+/// Sweeps of the area equalization by default.
+pub const DEFAULT_AREA_EQUALIZATION: usize = 30;
+
+impl Default for RemeshOptions {
+    fn default() -> Self {
+        Self { grid: CapGrid::default(), param: ParamOptions::default(), area_equalization: DEFAULT_AREA_EQUALIZATION }
+    }
 }
 
 /// What [`remesh`] measured.
@@ -49,30 +63,43 @@ pub struct RemeshOptions {
 pub struct RemeshReport {
     /// The parameterization.
     pub param: ParamReport,
+    /// The area equalization of the pulled-back mesh.
+    pub area_equalization: AreaRefineReport,
     /// Quality of the result against the input.
     pub quality: RemeshMetrics,
     /// Seconds of the whole remeshing (parameterization included).
     pub seconds: f64,
 }
 
-/// Remesh an open disk-like surface through its adaptive cap.
+/// Remesh a surface through its adaptive cap: an open disk gives an open disk, a closed
+/// genus-0 surface a closed genus-0 mesh (the cap grid closed by a flat bottom disk that is
+/// pulled back onto the punctured quad).
 pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport), Error> {
     let start = Instant::now();
     let map = parameterize(mesh, &options.param, progress)?;
-    if map.report.kind != SurfaceKind::OpenDisk.to_string() {
-        return Err(Error::Unsupported(
-            "remeshing closed surfaces is not supported yet (the punctured bottom is not pulled back); cut the surface open first".into(),
-        ));
-    }
+    let closed = map.report.kind != SurfaceKind::OpenDisk.to_string();
     let z_star = map.report.z_star.ok_or_else(|| Error::InvalidOption("remeshing needs a spherical cap domain, not the planar disk".into()))?;
     progress::check(progress, Stage::Remesh, 0.0, "pulling the cap mesh back")?;
     let cap = match options.grid {
         CapGrid::Uniform { faces } => grid::uniform_cap(z_star, faces.max(1)),
         CapGrid::LatLong { rings, sectors } => grid::lat_long(z_star, rings, sectors),
     };
-    let positions = pullback::pull_back(mesh, &map.plane, &cap.vertices)
-        .ok_or_else(|| Error::Unsupported("the parameterized mesh has no face to pull back from".into()))?;
-    let out = TriMesh::new(positions, cap.faces);
+    let no_face = || Error::Unsupported("the parameterized mesh has no face to pull back from".into());
+    let top_faces: Vec<[u32; 3]> = (0..mesh.n_faces()).filter(|f| !map.bottom_faces.contains(f)).map(|f| mesh.faces[f]).collect();
+    // The rim (the cap grid's last ring) and the bottom stay where the pull-back put them.
+    let rim = cap.vertices.iter().rev().take_while(|p| Some(p[2]) == cap.vertices.last().map(|q| q[2])).count();
+    let first_fixed = cap.vertices.len() - rim;
+    let (grid_mesh, mut positions) = if closed {
+        let grid = grid::close_bottom(cap);
+        let positions = pullback::pull_back_closed(mesh, &map, &grid).ok_or_else(no_face)?;
+        (grid.mesh, positions)
+    } else {
+        let positions = pullback::pull_back(mesh, &map.plane, &cap.vertices).ok_or_else(no_face)?;
+        (cap, positions)
+    };
+    progress::check(progress, Stage::Remesh, 0.5, "equalizing the areas")?;
+    let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &grid_mesh, first_fixed, &mut positions, options.area_equalization);
+    let out = TriMesh::new(positions, grid_mesh.faces);
     let quality = remesh_metrics(mesh, &out);
-    Ok((out, RemeshReport { param: map.report, quality, seconds: start.elapsed().as_secs_f64() }))
+    Ok((out, RemeshReport { param: map.report, area_equalization: equalization, quality, seconds: start.elapsed().as_secs_f64() }))
 }

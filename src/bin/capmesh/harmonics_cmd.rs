@@ -79,6 +79,14 @@ pub fn run(args: HarmonicsArgs) -> Result<(), String> {
     for extra in [&args.coefficients, &args.report, &args.cap_mesh].into_iter().flatten() {
         refuse_overwrite(input, extra)?;
     }
+    for mesh_out in [Some(&args.output), args.cap_mesh.as_ref()].into_iter().flatten() {
+        if io::Format::from_path(mesh_out).is_none() {
+            return Err(format!(
+                "{}: unknown mesh format; use .obj, .ply, .off or .stl (optionally .gz)",
+                mesh_out.display()
+            ));
+        }
+    }
     let mesh = read(input)?;
     let named = |e: capmesh::Error| format!("{}: {e}", input.display());
     let bar = crate::cli_progress::Bar::new(args.quiet);

@@ -60,9 +60,13 @@ enum Command {
         /// (0 is the paper's plain centroid map).
         #[arg(long, default_value = "auto")]
         smoothing: Smoothing,
+        /// Sweeps of the face-level area refinement after transport (0 is the paper's map).
+        #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_AREA_REFINEMENT)]
+        area_refinement: usize,
     },
-    /// Remesh an open surface through its adaptive cap: a uniform cap mesh of about N faces
-    /// (default) or a latitude/longitude mesh, pulled back by the inverse map.
+    /// Remesh a surface through its adaptive cap: a uniform cap mesh of about N faces
+    /// (default) or a latitude/longitude mesh, pulled back by the inverse map. Closed
+    /// surfaces come back closed (the cap's flat bottom goes onto the punctured quad).
     Remesh {
         /// Input mesh.
         input: PathBuf,
@@ -84,6 +88,10 @@ enum Command {
         /// Write a JSON report here.
         #[arg(long)]
         report: Option<PathBuf>,
+        /// Sweeps of the area equalization of the pulled-back mesh (0: the paper's plain
+        /// pull-back).
+        #[arg(long, default_value_t = capmesh::remesh::DEFAULT_AREA_EQUALIZATION)]
+        area_equalization: usize,
     },
     /// Adaptive harmonics representation: parameterize onto the adaptive cap, fit every order up
     /// to N by least squares, write the order-N reconstruction (the input's connectivity), the
@@ -184,7 +192,7 @@ fn run(cli: Cli) -> Result<(), String> {
             harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, quiet: cli.quiet })
         }
         Command::Shape { inputs, csv, jobs, domain } => shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, quiet: cli.quiet }),
-        Command::Remesh { input, output, faces, lat_long, rings, sectors, report } => {
+        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -192,7 +200,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let m = read(&input)?;
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-            let options = RemeshOptions { grid, ..Default::default() };
+            let options = RemeshOptions { grid, area_equalization, ..Default::default() };
             let (out, rep) = remesh(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
             bar.finish();
             io::write_mesh(&output, &out).map_err(|e| e.to_string())?;
@@ -210,6 +218,7 @@ fn run(cli: Cli) -> Result<(), String> {
                     d_surface_sampled_relative: f64,
                     min_angle_deg: f64,
                     seconds: f64,
+                    area_equalization: capmesh::cap::area_refine::AreaRefineReport,
                     parameterization: &'a capmesh::ParamReport,
                 }
                 let q = &rep.quality;
@@ -225,6 +234,7 @@ fn run(cli: Cli) -> Result<(), String> {
                         d_surface_sampled_relative: q.d_surface_sampled_relative,
                         min_angle_deg: q.min_angle_deg,
                         seconds: rep.seconds,
+                        area_equalization: rep.area_equalization,
                         parameterization: &rep.param,
                     },
                 )?;
@@ -269,7 +279,7 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             Ok(())
         }
-        Command::Param { input, output, domain, report, initial, lambda, open_lambda, smoothing } => {
+        Command::Param { input, output, domain, report, initial, lambda, open_lambda, smoothing, area_refinement } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -281,6 +291,7 @@ fn run(cli: Cli) -> Result<(), String> {
             options.closed.lambda = lambda;
             options.open_lambda = open_lambda;
             options.smoothing = smoothing;
+            options.area_refinement = area_refinement;
             let map = parameterize(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
             bar.finish();
             io::write_mesh(&output, &map.cap_mesh(&m)).map_err(|e| e.to_string())?;

@@ -1,0 +1,162 @@
+//! Closed genus-0 surfaces (paper Sec. 3.2): every shared closed mesh maps onto the adaptive
+//! cap with no folded face outside the punctured quad and mean |d_area| <= 0.20, no worse in
+//! area than the hemisphere baseline; a sphere and a dome give Z* near -1 (only the punctured
+//! quad maps to the bottom); reversed winding gives the same map.
+
+use capmesh::cap::{parameterize, CapMap, Domain, ParamOptions};
+use capmesh::io::read_mesh;
+use capmesh::mesh::shapes::{icosphere, spherical_cap};
+use capmesh::mesh::{Topology, TriMesh};
+use capmesh::progress::NoProgress;
+use std::path::PathBuf;
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
+}
+
+fn adaptive(mesh: &TriMesh, name: &str) -> CapMap {
+    parameterize(mesh, &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// The quad's corners lie on the bottom circle `Z = Z*`, every other vertex above it.
+fn check_bottom(map: &CapMap, name: &str) {
+    let z_star = map.report.z_star.expect("a cap");
+    let quad = map.report.puncture.as_ref().expect("closed surfaces report their puncture").quad;
+    for (v, p) in map.cap.iter().enumerate() {
+        if quad.contains(&(v as u32)) {
+            assert!((p[2] - z_star).abs() < 1e-9, "{name}: quad corner {v} at Z = {} not on Z* = {z_star}", p[2]);
+        } else {
+            assert!(p[2] > z_star - 1e-12, "{name}: vertex {v} below the cap (Z = {}, Z* = {z_star})", p[2]);
+        }
+    }
+}
+
+fn check_shared(name: &str) {
+    let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
+    let a = adaptive(&mesh, name);
+    let hemi = parameterize(&mesh, &ParamOptions::default().with_domain(Domain::Hemisphere), &NoProgress)
+        .unwrap_or_else(|e| panic!("{name} (hemisphere): {e}"));
+    let (r, h) = (&a.report, &hemi.report);
+    eprintln!(
+        "{name}: adaptive Z* {:.4} d_area {:.4} d_angle {:.4} flips {} | hemisphere d_area {:.4} | {:.1}s",
+        r.z_star.unwrap(),
+        r.area_distortion.mean_abs,
+        r.angle_distortion.mean_abs,
+        r.flipped_faces,
+        h.area_distortion.mean_abs,
+        r.seconds
+    );
+    assert_eq!(r.flipped_faces, 0, "{name}: folded faces outside the punctured quad");
+    assert!(r.area_distortion.mean_abs <= 0.20, "{name}: mean |d_area| = {}", r.area_distortion.mean_abs);
+    assert!(
+        r.area_distortion.mean_abs <= h.area_distortion.mean_abs,
+        "{name}: adaptive mean |d_area| {} > hemisphere {}",
+        r.area_distortion.mean_abs,
+        h.area_distortion.mean_abs
+    );
+    check_bottom(&a, name);
+}
+
+#[test]
+fn brain_12k() {
+    check_shared("closed_brain12k_choi.obj.gz");
+}
+
+#[test]
+fn brain_48k() {
+    check_shared("closed_brain_choi.obj.gz");
+}
+
+#[test]
+fn lung_lobe() {
+    check_shared("closed_lung_rml_chaste.obj.gz");
+}
+
+#[test]
+fn bunny() {
+    check_shared("closed_bunny_npm.obj.gz");
+}
+
+#[test]
+fn hippocampus() {
+    check_shared("closed_hippocampus_choi.obj.gz");
+}
+
+#[test]
+fn bird_skull() {
+    check_shared("closed_bird_skull_CPallidusA_choi.obj.gz");
+}
+
+#[test]
+fn sphere_maps_onto_almost_the_whole_sphere() {
+    let mesh = icosphere(4);
+    let map = adaptive(&mesh, "icosphere");
+    let r = &map.report;
+    eprintln!("icosphere: Z* {:.4} d_area {:.4} d_angle {:.4}", r.z_star.unwrap(), r.area_distortion.mean_abs, r.angle_distortion.mean_abs);
+    assert!(r.z_star.unwrap() < -0.9, "a sphere should fill the sphere, Z* = {}", r.z_star.unwrap());
+    assert_eq!(r.flipped_faces, 0);
+    assert!(r.area_distortion.mean_abs < 0.05, "mean |d_area| = {}", r.area_distortion.mean_abs);
+    check_bottom(&map, "icosphere");
+}
+
+/// The cap `Z >= z0` closed by a flat fan over its boundary circle.
+fn dome(z0: f64) -> TriMesh {
+    let cap = spherical_cap(z0, 16, capmesh::mesh::shapes::spherical_cap_sectors(z0, 16));
+    let topo = Topology::build(&cap).unwrap();
+    let loop_ = &topo.boundary_loops[0];
+    let mut vertices = cap.vertices.clone();
+    let centre = vertices.len() as u32;
+    vertices.push([0.0, 0.0, z0]);
+    let mut faces = cap.faces.clone();
+    // The cap's faces are outward (counter-clockwise seen from above); the loop runs with them,
+    // so the bottom fan takes each boundary edge reversed.
+    for k in 0..loop_.len() {
+        let (a, b) = (loop_[k], loop_[(k + 1) % loop_.len()]);
+        faces.push([b, a, centre]);
+    }
+    TriMesh::new(vertices, faces)
+}
+
+#[test]
+fn dome_maps_onto_almost_the_whole_sphere() {
+    let mesh = dome(0.3);
+    let (kind, _) = capmesh::mesh::validate(&mesh).expect("the dome is a valid closed surface");
+    assert_eq!(kind, capmesh::mesh::SurfaceKind::ClosedSphere);
+    let map = adaptive(&mesh, "dome");
+    let r = &map.report;
+    eprintln!("dome z0 = 0.3: Z* {:.4} d_area {:.4} d_angle {:.4}", r.z_star.unwrap(), r.area_distortion.mean_abs, r.angle_distortion.mean_abs);
+    assert_eq!(r.flipped_faces, 0);
+    assert!(r.area_distortion.mean_abs < 0.1, "mean |d_area| = {}", r.area_distortion.mean_abs);
+    // Only the punctured quad (two of the dome's faces) maps to the flat bottom, so the cap
+    // must be nearly the whole sphere, as for the sphere itself.
+    let z = r.z_star.unwrap();
+    assert!(z < -0.9, "Z* = {z}");
+    check_bottom(&map, "dome");
+}
+
+#[test]
+fn reversed_winding_gives_the_same_map() {
+    let mesh = read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap();
+    let reversed = TriMesh::new(mesh.vertices.clone(), mesh.faces.iter().map(|f| [f[0], f[2], f[1]]).collect());
+    let a = adaptive(&mesh, "bunny");
+    let b = adaptive(&reversed, "bunny reversed");
+    let (ra, rb) = (&a.report, &b.report);
+    eprintln!(
+        "bunny: Z* {:.6} vs {:.6}, d_area {:.5} vs {:.5}, d_angle {:.5} vs {:.5}",
+        ra.z_star.unwrap(),
+        rb.z_star.unwrap(),
+        ra.area_distortion.mean_abs,
+        rb.area_distortion.mean_abs,
+        ra.angle_distortion.mean_abs,
+        rb.angle_distortion.mean_abs
+    );
+    assert_eq!(rb.flipped_faces, 0);
+    assert!((ra.z_star.unwrap() - rb.z_star.unwrap()).abs() < 1e-3);
+    assert!((ra.area_distortion.mean_abs - rb.area_distortion.mean_abs).abs() < 0.01);
+    assert!((ra.angle_distortion.mean_abs - rb.angle_distortion.mean_abs).abs() < 0.01);
+    // Same puncture (as a set of vertices).
+    let (mut qa, mut qb) = (ra.puncture.as_ref().unwrap().quad, rb.puncture.as_ref().unwrap().quad);
+    qa.sort_unstable();
+    qb.sort_unstable();
+    assert_eq!(qa, qb);
+}
