@@ -26,6 +26,8 @@
 
 pub mod cap;
 pub mod error;
+#[cfg(feature = "capi")]
+pub mod ffi;
 pub mod flatten;
 pub mod harmonics;
 pub mod io;
@@ -33,6 +35,8 @@ pub mod linalg;
 pub mod mesh;
 pub mod metrics;
 pub mod omt;
+#[cfg(feature = "openmesh")]
+pub mod openmesh;
 pub mod progress;
 pub mod remesh;
 
