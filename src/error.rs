@@ -2,6 +2,7 @@
 //! so a user can tell "your mesh has two boundary loops" from "the solver did not converge".
 
 use crate::flatten::FlattenError;
+use crate::harmonics::HarmonicsError;
 use crate::io::{ReadError, WriteError};
 use crate::mesh::MeshError;
 use crate::omt::OmtError;
@@ -26,6 +27,9 @@ pub enum Error {
     /// The optimal transport failed.
     #[error(transparent)]
     Transport(#[from] OmtError),
+    /// The adaptive harmonics fit failed.
+    #[error(transparent)]
+    Harmonics(#[from] HarmonicsError),
     /// The input is valid but asks for something not supported.
     #[error("{0}")]
     Unsupported(String),

@@ -25,6 +25,8 @@
 
 pub mod cap;
 pub mod error;
+#[cfg(feature = "capi")]
+pub mod ffi;
 pub mod flatten;
 pub mod harmonics;
 pub mod io;

@@ -171,6 +171,15 @@ pub enum HarmonicsError {
         singular_values: [f64; 3],
     },
 
+    /// Fits on different caps were given where one cap is needed.
+    #[error("the fits are on different caps (Z* = {first} and Z* = {other}); use fits of one parameterization")]
+    MixedZStar {
+        /// `Z*` of the first fit.
+        first: f64,
+        /// A different `Z*`.
+        other: f64,
+    },
+
     /// A dense decomposition failed to converge.
     #[error("the singular value decomposition did not converge")]
     SvdFailed,

@@ -233,55 +233,90 @@ impl HarmonicFit {
         original: &[[f64; 3]],
     ) -> Result<Vec<OrderError>, HarmonicsError> {
         let fits = fit_all_orders(cap_points, original, self.z_star, self.order)?;
-        let basis = CapBasis::new(self.z_star, self.order)?;
-        let coords = coordinates(&basis, cap_points)?;
-        let orders = self.order + 1;
-        // distances[i * orders + n]: distance of point i at order n.
-        let distances: Vec<f64> = coords
-            .par_chunks(ROW_CHUNK)
-            .zip(original.par_chunks(ROW_CHUNK))
-            .flat_map_iter(|(chunk, targets)| {
-                let (mut scratch, mut values) = (Vec::new(), vec![0.0; basis.len()]);
-                let mut out = Vec::with_capacity(chunk.len() * orders);
-                for (c, target) in chunk.iter().zip(targets) {
-                    basis.fill(c, &mut scratch, &mut values);
-                    for fit in &fits {
-                        let y = combine(&values[..fit.coefficients.len()], &fit.coefficients);
-                        out.push(distance(y, *target));
-                    }
-                }
-                out.into_iter()
-            })
-            .collect();
-        let diagonal = bounding_box_diagonal(original);
-        let relative = |d: f64| {
-            if diagonal > 0.0 {
-                d / diagonal
-            } else if d == 0.0 {
-                0.0
-            } else {
-                f64::INFINITY
-            }
-        };
-        let k = coords.len().max(1) as f64;
-        Ok((0..orders)
-            .map(|n| {
-                let (sum, max) = distances
-                    .iter()
-                    .skip(n)
-                    .step_by(orders)
-                    .fold((0.0, 0.0f64), |(s, m), &d| (s + d, m.max(d)));
-                let mean = sum / k;
-                OrderError {
-                    order: n,
-                    mean_distance: mean,
-                    max_distance: max,
-                    mean_relative: relative(mean),
-                    max_relative: relative(max),
-                }
-            })
-            .collect())
+        order_errors(&fits, cap_points, original)
     }
+}
+
+/// Reconstruction error of each fit in `fits` (for instance the output of [`fit_all_orders`])
+/// against the `original` points at `cap_points`, one [`OrderError`] per fit in the same order.
+/// Every fit must have the same `z_star` ([`HarmonicsError::MixedZStar`] otherwise). Relative errors are divided by the bounding-box
+/// diagonal of `original` (when that is 0 they are 0 for a zero distance and infinite
+/// otherwise). The basis is evaluated once per point, at the largest order.
+pub fn order_errors(
+    fits: &[HarmonicFit],
+    cap_points: &[[f64; 3]],
+    original: &[[f64; 3]],
+) -> Result<Vec<OrderError>, HarmonicsError> {
+    let Some(first) = fits.first() else {
+        return Ok(Vec::new());
+    };
+    if original.len() != cap_points.len() {
+        return Err(HarmonicsError::LengthMismatch {
+            points: cap_points.len(),
+            values: original.len(),
+        });
+    }
+    let z_star = first.z_star;
+    for f in fits {
+        f.basis()?;
+        if f.z_star.to_bits() != z_star.to_bits() {
+            return Err(HarmonicsError::MixedZStar {
+                first: z_star,
+                other: f.z_star,
+            });
+        }
+    }
+    let top = fits.iter().map(|f| f.order).max().unwrap_or(0);
+    let basis = CapBasis::new(z_star, top)?;
+    let coords = coordinates(&basis, cap_points)?;
+    let orders = fits.len();
+    // distances[i * orders + j]: distance of point i under fit j.
+    let distances: Vec<f64> = coords
+        .par_chunks(ROW_CHUNK)
+        .zip(original.par_chunks(ROW_CHUNK))
+        .flat_map_iter(|(chunk, targets)| {
+            let (mut scratch, mut values) = (Vec::new(), vec![0.0; basis.len()]);
+            let mut out = Vec::with_capacity(chunk.len() * orders);
+            for (c, target) in chunk.iter().zip(targets) {
+                basis.fill(c, &mut scratch, &mut values);
+                for fit in fits {
+                    let y = combine(&values[..fit.coefficients.len()], &fit.coefficients);
+                    out.push(distance(y, *target));
+                }
+            }
+            out.into_iter()
+        })
+        .collect();
+    let diagonal = bounding_box_diagonal(original);
+    let relative = |d: f64| {
+        if diagonal > 0.0 {
+            d / diagonal
+        } else if d == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        }
+    };
+    let k = coords.len().max(1) as f64;
+    Ok(fits
+        .iter()
+        .enumerate()
+        .map(|(j, fit)| {
+            let (sum, max) = distances
+                .iter()
+                .skip(j)
+                .step_by(orders)
+                .fold((0.0, 0.0f64), |(s, m), &d| (s + d, m.max(d)));
+            let mean = sum / k;
+            OrderError {
+                order: fit.order,
+                mean_distance: mean,
+                max_distance: max,
+                mean_relative: relative(mean),
+                max_relative: relative(max),
+            }
+        })
+        .collect())
 }
 
 /// Checked coordinates of every point (first bad point reported).

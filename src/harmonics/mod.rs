@@ -32,12 +32,14 @@ pub mod basis;
 pub mod error;
 pub mod fit;
 pub mod legendre;
+pub mod pipeline;
 pub mod quadrature;
 pub mod shape;
 
 pub use basis::{basis_degree, basis_index, basis_len, CapBasis};
 pub use error::HarmonicsError;
-pub use fit::{fit, fit_all_orders, HarmonicFit, OrderError};
+pub use fit::{fit, fit_all_orders, order_errors, HarmonicFit, OrderError};
+pub use pipeline::{analyze, analyze_map, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
 pub use legendre::{associated_legendre, normalized_legendre, NormalizedLegendre};
 pub use quadrature::gauss_legendre;
 pub use shape::{aspect_ratio, order_one_ellipsoid, AspectRatio, OrderOneEllipsoid};

@@ -1,6 +1,8 @@
-//! The `capmesh` command line: check, param (and more as the pipeline grows).
+//! The `capmesh` command line: check, param, remesh, metrics, harmonics, shape.
 
 mod cli_progress;
+mod harmonics_cmd;
+mod shape_cmd;
 
 use capmesh::cap::{parameterize, Domain, OpenInitialMap, ParamOptions, Smoothing};
 use capmesh::io;
@@ -11,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "capmesh", version, about = "Adaptive area-preserving parameterization onto a spherical cap, and remeshing through it")]
+#[command(name = "capmesh", version, about = "Adaptive area-preserving parameterization onto a spherical cap, remeshing through it, and adaptive harmonics")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -83,6 +85,50 @@ enum Command {
         #[arg(long)]
         report: Option<PathBuf>,
     },
+    /// Adaptive harmonics representation: parameterize onto the adaptive cap, fit every order up
+    /// to N by least squares, write the order-N reconstruction (the input's connectivity), the
+    /// coefficients and the reconstruction error of each order.
+    Harmonics {
+        /// Input mesh.
+        input: PathBuf,
+        /// Largest order N ((N + 1)^2 basis functions).
+        #[arg(long, default_value_t = capmesh::harmonics::pipeline::DEFAULT_ORDER)]
+        order: usize,
+        /// Output mesh: the reconstructed surface.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Write the coefficients as JSON here (z_star, order, q1, q2, list of n, m, x, y, z).
+        #[arg(long)]
+        coefficients: Option<PathBuf>,
+        /// Write a JSON report here (error per order, aspect ratio, parameterization).
+        #[arg(long)]
+        report: Option<PathBuf>,
+        /// Write the cap map here (the input's connectivity with its vertices on the cap): the
+        /// points at which the coefficients are evaluated.
+        #[arg(long)]
+        cap_mesh: Option<PathBuf>,
+        /// Domain: adaptive (default), hemisphere, sphere or radius=R.
+        #[arg(long, default_value = "adaptive")]
+        domain: Domain,
+    },
+    /// Shape analysis of many meshes in parallel: Z* and the order-1 (N = 1) aspect ratio
+    /// sigma1/sigma3 of each, one CSV row per mesh. Failed meshes get a 'failed' row; the
+    /// command then exits non-zero after writing the CSV.
+    Shape {
+        /// Mesh files and/or directories (searched recursively for .obj, .ply, .off, .stl,
+        /// optionally .gz).
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+        /// Output CSV file.
+        #[arg(long)]
+        csv: PathBuf,
+        /// Meshes analysed at once (default: one per core).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Domain: adaptive (default), hemisphere, sphere or radius=R.
+        #[arg(long, default_value = "adaptive")]
+        domain: Domain,
+    },
     /// Remeshing metrics of any remeshed surface against its original: d_face, surface
     /// distances, minimum angle.
     Metrics {
@@ -107,18 +153,18 @@ fn main() -> ExitCode {
     }
 }
 
-fn read(path: &Path) -> Result<capmesh::TriMesh, String> {
+pub(crate) fn read(path: &Path) -> Result<capmesh::TriMesh, String> {
     io::read_mesh(path).map_err(|e| e.to_string())
 }
 
-fn refuse_overwrite(input: &Path, output: &Path) -> Result<(), String> {
+pub(crate) fn refuse_overwrite(input: &Path, output: &Path) -> Result<(), String> {
     if io::same_file(input, output) {
         return Err(format!("refusing to overwrite the input file {}; choose another output path", input.display()));
     }
     Ok(())
 }
 
-fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(), String> {
+pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(), String> {
     let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
     std::fs::write(path, text + "\n").map_err(|e| format!("cannot write report {}: {e}", path.display()))
 }
@@ -134,6 +180,10 @@ fn print_quality(q: &capmesh::metrics::RemeshMetrics) {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
+        Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain } => {
+            harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, quiet: cli.quiet })
+        }
+        Command::Shape { inputs, csv, jobs, domain } => shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, quiet: cli.quiet }),
         Command::Remesh { input, output, faces, lat_long, rings, sectors, report } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {

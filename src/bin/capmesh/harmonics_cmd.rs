@@ -1,0 +1,123 @@
+//! `capmesh harmonics`: adaptive harmonics representation of one mesh, written as the
+//! reconstructed surface, the coefficients (JSON) and a report of the error per order.
+
+use crate::{read, refuse_overwrite, write_json};
+use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::harmonics::{analyze_map, basis_degree, HarmonicFit, HarmonicsOutput};
+use capmesh::io;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `capmesh harmonics`.
+pub struct HarmonicsArgs {
+    pub input: PathBuf,
+    pub order: usize,
+    pub output: PathBuf,
+    pub coefficients: Option<PathBuf>,
+    pub report: Option<PathBuf>,
+    pub cap_mesh: Option<PathBuf>,
+    pub domain: Domain,
+    pub quiet: bool,
+}
+
+/// The coefficients file: everything needed to evaluate the representation at a cap point.
+#[derive(Serialize)]
+struct CoefficientsFile<'a> {
+    /// What the numbers mean.
+    basis: &'static str,
+    z_star: f64,
+    order: usize,
+    q1: f64,
+    q2: f64,
+    coefficients: Vec<Coefficient>,
+    /// The file whose parameterization the coefficients are evaluated on.
+    source: &'a str,
+}
+
+#[derive(Serialize)]
+struct Coefficient {
+    n: usize,
+    m: isize,
+    x: f64,
+    y: f64,
+    z: f64,
+}
+
+const BASIS_DOC: &str = "position(X, Y, Z) = sum over 0 <= n <= order, -n <= m <= n of (x, y, z)_nm A_n^m(X, Y, Z), \
+     at a point (X, Y, Z) of the unit-sphere cap Z >= z_star (one per vertex in the --cap-mesh file); \
+     t = q1 Z + q2, phi = atan2(Y, X); A_n^0 = sqrt(q1 / (2 pi)) Pbar_n^0(t); for m > 0 \
+     A_n^m = (-1)^m sqrt(q1 / pi) Pbar_n^m(t) cos(m phi) and A_n^-m = (-1)^m sqrt(q1 / pi) \
+     Pbar_n^m(t) sin(m phi); Pbar_n^m = sqrt((2n + 1) / 2 (n - m)! / (n + m)!) P_n^m with \
+     P_n^m(x) = (-1)^m / (2^n n!) (1 - x^2)^(m/2) d^(n+m)/dx^(n+m) (x^2 - 1)^n \
+     (capmesh::harmonics::basis, paper Eq. 22-24 with q1 = 2 / (1 - z_star))";
+
+fn coefficients_file<'a>(fit: &HarmonicFit, source: &'a str) -> Result<CoefficientsFile<'a>, String> {
+    let basis = fit.basis().map_err(|e| e.to_string())?;
+    Ok(CoefficientsFile {
+        basis: BASIS_DOC,
+        z_star: fit.z_star,
+        order: fit.order,
+        q1: basis.q1(),
+        q2: basis.q2(),
+        coefficients: fit
+            .coefficients
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let (n, m) = basis_degree(i);
+                Coefficient { n, m, x: c[0], y: c[1], z: c[2] }
+            })
+            .collect(),
+        source,
+    })
+}
+
+/// Run `capmesh harmonics`.
+pub fn run(args: HarmonicsArgs) -> Result<(), String> {
+    let input = &args.input;
+    refuse_overwrite(input, &args.output)?;
+    for extra in [&args.coefficients, &args.report, &args.cap_mesh].into_iter().flatten() {
+        refuse_overwrite(input, extra)?;
+    }
+    let mesh = read(input)?;
+    let named = |e: capmesh::Error| format!("{}: {e}", input.display());
+    let bar = crate::cli_progress::Bar::new(args.quiet);
+    let options = ParamOptions::default().with_domain(args.domain);
+    // Cheap checks first (order, vertex count), then the parameterization, then the fit.
+    capmesh::harmonics::pipeline::check_request(&mesh, args.order).map_err(|e| named(e.into()))?;
+    let map = parameterize(&mesh, &options, &bar).map_err(named)?;
+    let HarmonicsOutput { reconstructed, fit, report } = analyze_map(&mesh, &map, args.order, &bar).map_err(named)?;
+    bar.finish();
+    io::write_mesh(&args.output, &reconstructed).map_err(|e| e.to_string())?;
+    if let Some(path) = &args.cap_mesh {
+        io::write_mesh(path, &map.cap_mesh(&mesh)).map_err(|e| e.to_string())?;
+    }
+    if let Some(path) = &args.coefficients {
+        write_json(path, &coefficients_file(&fit, &display_name(input))?)?;
+    }
+    if let Some(path) = &args.report {
+        write_json(path, &report)?;
+    }
+    println!(
+        "{}: {} on Z* = {:.4}, order {} ({} functions), {:.2} s",
+        input.display(),
+        report.param.kind,
+        report.z_star,
+        report.order,
+        report.basis_functions,
+        report.seconds
+    );
+    println!("order  mean error  max error   (relative to the bounding-box diagonal)");
+    for e in &report.errors_by_order {
+        println!("{:5}  {:10.6}  {:9.6}", e.order, e.mean_relative, e.max_relative);
+    }
+    println!(
+        "order-1 aspect ratio sigma1/sigma3 {:.4} (exact order-1 ellipsoid {:.4})",
+        report.aspect_ratio, report.ellipsoid_aspect_ratio
+    );
+    Ok(())
+}
+
+fn display_name(path: &Path) -> String {
+    path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned())
+}

@@ -1,0 +1,138 @@
+//! Option structs of the C ABI, their defaults and their conversion to the library's options.
+
+use super::status::Failure;
+use crate::cap::{Domain, ParamOptions, Smoothing};
+use crate::flatten::closed::DEFAULT_LAMBDA;
+use crate::remesh::{CapGrid, RemeshOptions};
+
+/// `capmesh_v1_param_options.domain`: the adaptive cap of the paper (default).
+pub const CAPMESH_V1_DOMAIN_ADAPTIVE: i32 = 0;
+/// `capmesh_v1_param_options.domain`: the planar unit disk.
+pub const CAPMESH_V1_DOMAIN_DISK: i32 = 1;
+/// `capmesh_v1_param_options.domain`: the hemisphere `Z >= 0`.
+pub const CAPMESH_V1_DOMAIN_HEMISPHERE: i32 = 2;
+/// `capmesh_v1_param_options.domain`: nearly the whole sphere (`Z* = -0.995`).
+pub const CAPMESH_V1_DOMAIN_SPHERE: i32 = 3;
+/// `capmesh_v1_param_options.domain`: a fixed disk radius, `radius` (cap `Z >= (1-r^2)/(1+r^2)`).
+pub const CAPMESH_V1_DOMAIN_RADIUS: i32 = 4;
+
+/// `capmesh_v1_remesh_options.grid`: near-equilateral faces, about `faces` of them (default).
+pub const CAPMESH_V1_GRID_UNIFORM: i32 = 0;
+/// `capmesh_v1_remesh_options.grid`: `rings` latitude rings times `sectors` meridians.
+pub const CAPMESH_V1_GRID_LAT_LONG: i32 = 1;
+
+/// Parameterization options. Start from `capmesh_v1_param_options_default()`.
+#[allow(non_camel_case_types)]
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct capmesh_v1_param_options {
+    /// One of `CAPMESH_V1_DOMAIN_*`. Default adaptive (0).
+    pub domain: i32,
+    /// Disk radius for `CAPMESH_V1_DOMAIN_RADIUS`, finite and > 0; ignored otherwise. Default 1.
+    pub radius: f64,
+    /// Quasi-conformal factor of closed surfaces, in [0, 1]. Default 0.2.
+    pub lambda: f64,
+    /// Centroid-map regularisation strength kappa; negative = automatic choice (default),
+    /// 0 = the paper's plain centroid map.
+    pub smoothing: f64,
+}
+
+/// Remeshing options. Start from `capmesh_v1_remesh_options_default()`.
+#[allow(non_camel_case_types)]
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct capmesh_v1_remesh_options {
+    /// `CAPMESH_V1_GRID_UNIFORM` (default) or `CAPMESH_V1_GRID_LAT_LONG`.
+    pub grid: i32,
+    /// Target face count of the uniform grid, >= 1. Default 5000.
+    pub faces: u32,
+    /// Latitude rings of the lat-long grid, >= 1. Default 40.
+    pub rings: u32,
+    /// Meridians of the lat-long grid, >= 3. Default 64.
+    pub sectors: u32,
+    /// Parameterization options.
+    pub param: capmesh_v1_param_options,
+}
+
+/// The defaults documented on each field.
+#[no_mangle]
+pub extern "C" fn capmesh_v1_param_options_default() -> capmesh_v1_param_options {
+    capmesh_v1_param_options { domain: CAPMESH_V1_DOMAIN_ADAPTIVE, radius: 1.0, lambda: DEFAULT_LAMBDA, smoothing: -1.0 }
+}
+
+/// The defaults documented on each field.
+#[no_mangle]
+pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_options {
+    capmesh_v1_remesh_options {
+        grid: CAPMESH_V1_GRID_UNIFORM,
+        faces: 5000,
+        rings: 40,
+        sectors: 64,
+        param: capmesh_v1_param_options_default(),
+    }
+}
+
+fn finite(name: &str, x: f64) -> Result<f64, Failure> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(Failure::invalid_argument(format!("{name} = {x} is not a finite number")))
+    }
+}
+
+/// The library's [`ParamOptions`] for `o`, or why `o` is out of range.
+pub(crate) fn param_options(o: &capmesh_v1_param_options) -> Result<ParamOptions, Failure> {
+    let domain = match o.domain {
+        CAPMESH_V1_DOMAIN_ADAPTIVE => Domain::Adaptive,
+        CAPMESH_V1_DOMAIN_DISK => Domain::Disk,
+        CAPMESH_V1_DOMAIN_HEMISPHERE => Domain::Hemisphere,
+        CAPMESH_V1_DOMAIN_SPHERE => Domain::Sphere,
+        CAPMESH_V1_DOMAIN_RADIUS => {
+            let r = finite("radius", o.radius)?;
+            if r <= 0.0 {
+                return Err(Failure::invalid_argument(format!("radius = {r} must be > 0 for the fixed-radius domain")));
+            }
+            Domain::Radius(r)
+        }
+        d => {
+            return Err(Failure::invalid_argument(format!(
+                "domain = {d} is not one of 0 (adaptive), 1 (disk), 2 (hemisphere), 3 (sphere), 4 (fixed radius)"
+            )))
+        }
+    };
+    let lambda = finite("lambda", o.lambda)?;
+    if !(0.0..=1.0).contains(&lambda) {
+        return Err(Failure::invalid_argument(format!("lambda = {lambda} is outside [0, 1]")));
+    }
+    let smoothing = match finite("smoothing", o.smoothing)? {
+        k if k < 0.0 => Smoothing::Auto,
+        k => Smoothing::Fixed(k),
+    };
+    let mut options = ParamOptions::default().with_domain(domain);
+    options.closed.lambda = lambda;
+    options.smoothing = smoothing;
+    Ok(options)
+}
+
+/// The library's [`RemeshOptions`] for `o`, or why `o` is out of range.
+pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOptions, Failure> {
+    let grid = match o.grid {
+        CAPMESH_V1_GRID_UNIFORM => {
+            if o.faces == 0 {
+                return Err(Failure::invalid_argument("faces = 0: the uniform grid needs at least one face"));
+            }
+            CapGrid::Uniform { faces: o.faces as usize }
+        }
+        CAPMESH_V1_GRID_LAT_LONG => {
+            if o.rings == 0 || o.sectors < 3 {
+                return Err(Failure::invalid_argument(format!(
+                    "rings = {}, sectors = {}: the lat-long grid needs rings >= 1 and sectors >= 3",
+                    o.rings, o.sectors
+                )));
+            }
+            CapGrid::LatLong { rings: o.rings as usize, sectors: o.sectors as usize }
+        }
+        g => return Err(Failure::invalid_argument(format!("grid = {g} is not 0 (uniform) or 1 (lat-long)"))),
+    };
+    Ok(RemeshOptions { grid, param: param_options(&o.param)? })
+}

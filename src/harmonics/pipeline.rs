@@ -1,0 +1,235 @@
+//! The adaptive harmonics pipeline: parameterize a surface onto its adaptive cap, fit it with the
+//! adaptive harmonics of every order up to `N` (paper Eq. 26-28), reconstruct it, and measure the
+//! reconstruction error per order and the paper's `N = 1` aspect ratio (Eq. 29).
+//!
+//! ```text
+//! cap::parameterize -> CapMap { cap, report.z_star }
+//!   -> fit_all_orders (one QR)          -> HarmonicFit at order N
+//!   -> order_errors                     -> mean / max vertex distance per order n <= N
+//!   -> reconstruct(N)                   -> the input's connectivity at the order-N positions
+//!   -> aspect_ratio, order_one_ellipsoid -> sigma_1 / sigma_3 of the order-1 representation
+//! ```
+//!
+//! [`analyze`] does all of it; [`analyze_map`] starts from a parameterization already computed
+//! (the CLI uses it to also write the cap positions, which the coefficients need to be
+//! evaluated). Progress is reported with [`Stage::Harmonics`] after the parameterization's own
+//! stages; a `Break` cancels with [`Error::Cancelled`].
+//!
+//! Every `m > 0` basis function vanishes on the cap's boundary circle `Z = Z*` (see
+//! [`super::basis`]), so in the reconstruction of an open surface the whole boundary loop
+//! collapses to one point, at every order; the maximum error therefore stays near the size of
+//! the boundary loop while the mean error falls with `N`.
+//!
+//! Vertices used by no face have no cap position: they are left out of the fit and of the
+//! errors and keep their input position in the reconstruction.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::basis::basis_len;
+use super::fit::{fit, fit_all_orders, order_errors, HarmonicFit, OrderError, MAX_DESIGN_ENTRIES};
+use super::legendre::MAX_ORDER;
+use super::shape::{aspect_ratio, order_one_ellipsoid};
+use super::HarmonicsError;
+use crate::cap::{parameterize, CapMap, ParamOptions, ParamReport};
+use crate::error::Error;
+use crate::mesh::TriMesh;
+use crate::progress::{self, Progress, Stage};
+
+/// Default largest order `N` of [`HarmonicsOptions`].
+pub const DEFAULT_ORDER: usize = 10;
+
+/// Options of [`analyze`].
+#[derive(Debug, Clone)]
+pub struct HarmonicsOptions {
+    /// Largest order `N` of the fit: `(N + 1)^2` basis functions. Default [`DEFAULT_ORDER`]
+    /// (10). At most 500, and the mesh needs at least `(N + 1)^2` vertices.
+    pub order: usize,
+    /// Parameterization options. Default: the adaptive cap ([`ParamOptions::default`]); the
+    /// planar disk domain is refused (the harmonics live on a spherical cap).
+    pub param: ParamOptions,
+}
+
+impl Default for HarmonicsOptions {
+    fn default() -> Self {
+        Self {
+            order: DEFAULT_ORDER,
+            param: ParamOptions::default(),
+        }
+    }
+}
+
+impl HarmonicsOptions {
+    /// Set the largest order `N`.
+    pub fn with_order(mut self, order: usize) -> Self {
+        self.order = order;
+        self
+    }
+}
+
+/// What [`analyze`] measured.
+#[derive(Debug, Clone, Serialize)]
+pub struct HarmonicsReport {
+    /// The cap's lower bound `Z*` the surface was fitted on.
+    pub z_star: f64,
+    /// The largest order `N`.
+    pub order: usize,
+    /// Input vertices.
+    pub vertices: usize,
+    /// Vertices in the fit (those used by a face).
+    pub fitted_vertices: usize,
+    /// `(N + 1)^2`.
+    pub basis_functions: usize,
+    /// Reconstruction error of the least-squares fit at each order `0..=N` (each order fitted
+    /// on its own, from one QR factorization): mean and max vertex distance, absolute and
+    /// divided by the bounding-box diagonal of the fitted vertices.
+    pub errors_by_order: Vec<OrderError>,
+    /// The paper's aspect ratio `sigma_1 / sigma_3` of the order-1 representation (least-squares
+    /// `y ~ c + A x` over the unit cap points, [`super::shape::aspect_ratio`]); infinite (JSON
+    /// `null`) when that representation is flat.
+    pub aspect_ratio: f64,
+    /// `sigma_1 >= sigma_2 >= sigma_3` of that `A`.
+    pub singular_values: [f64; 3],
+    /// Ratio of the largest to the smallest semi-axis of the order-1 representation as the
+    /// exact ellipsoid over the stretched sphere ([`super::shape::order_one_ellipsoid`]); equal
+    /// to `aspect_ratio` when `Z* = -1`.
+    pub ellipsoid_aspect_ratio: f64,
+    /// Semi-axes of that ellipsoid, largest first.
+    pub ellipsoid_semi_axes: [f64; 3],
+    /// Seconds of the fit, errors and aspect ratios (after the parameterization).
+    pub fit_seconds: f64,
+    /// Seconds of the whole analysis, parameterization included.
+    pub seconds: f64,
+    /// The parameterization.
+    pub param: ParamReport,
+}
+
+/// The result of [`analyze`].
+#[derive(Debug, Clone)]
+pub struct HarmonicsOutput {
+    /// The input's connectivity with its vertices at the order-`N` reconstruction.
+    pub reconstructed: TriMesh,
+    /// The order-`N` coefficients (evaluate them at the cap positions of the parameterization).
+    pub fit: HarmonicFit,
+    /// What was measured.
+    pub report: HarmonicsReport,
+}
+
+/// Parameterize `mesh` with `options.param`, fit it with the adaptive harmonics up to
+/// `options.order`, reconstruct it and measure the errors and the aspect ratio.
+///
+/// The order and the vertex count are checked before the (expensive) parameterization.
+pub fn analyze(mesh: &TriMesh, options: &HarmonicsOptions, progress: &dyn Progress) -> Result<HarmonicsOutput, Error> {
+    check_request(mesh, options.order)?;
+    let map = parameterize(mesh, &options.param, progress)?;
+    analyze_map(mesh, &map, options.order, progress)
+}
+
+/// As [`analyze`], from the parameterization `map` of `mesh` (its `cap` holds one position per
+/// vertex of `mesh`). `seconds` in the report adds the parameterization's own time.
+pub fn analyze_map(mesh: &TriMesh, map: &CapMap, order: usize, progress: &dyn Progress) -> Result<HarmonicsOutput, Error> {
+    let start = Instant::now();
+    check_request(mesh, order)?;
+    let z_star = map.report.z_star.ok_or_else(|| {
+        Error::InvalidOption(
+            "adaptive harmonics need a spherical cap domain (adaptive, hemisphere, sphere or radius=R), not the planar disk"
+                .into(),
+        )
+    })?;
+    if map.cap.len() != mesh.n_vertices() {
+        return Err(Error::InvalidOption(format!(
+            "the parameterization has {} cap positions for a mesh of {} vertices; pass the map of this mesh",
+            map.cap.len(),
+            mesh.n_vertices()
+        )));
+    }
+    let used = referenced(mesh);
+    let cap: Vec<[f64; 3]> = used.iter().map(|&v| map.cap[v]).collect();
+    let values: Vec<[f64; 3]> = used.iter().map(|&v| mesh.vertices[v]).collect();
+
+    progress::check(progress, Stage::Harmonics, 0.0, &format!("fitting orders 0..={order}"))?;
+    let fits = fit_all_orders(&cap, &values, z_star, order)?;
+    progress::check(progress, Stage::Harmonics, 0.5, "reconstruction errors")?;
+    let errors_by_order = order_errors(&fits, &cap, &values)?;
+    let top = fits.last().cloned().ok_or(HarmonicsError::TooFewPoints {
+        points: cap.len(),
+        basis: basis_len(order),
+        order,
+    })?;
+    let positions = top.reconstruct(&cap, order)?;
+
+    progress::check(progress, Stage::Harmonics, 0.8, "order-1 aspect ratio")?;
+    let (ratio, singular_values) = match aspect_ratio(&cap, &values, z_star) {
+        Ok(a) => (a.ratio, a.singular_values),
+        Err(HarmonicsError::DegenerateShape { singular_values }) => (f64::INFINITY, singular_values),
+        Err(e) => return Err(e.into()),
+    };
+    let order_one = match fits.get(1) {
+        Some(f) => f.clone(),
+        None => fit(&cap, &values, z_star, 1)?,
+    };
+    let ellipsoid = order_one_ellipsoid(&order_one)?;
+
+    let mut vertices = mesh.vertices.clone();
+    for (&v, p) in used.iter().zip(positions) {
+        vertices[v] = p;
+    }
+    progress::check(progress, Stage::Harmonics, 1.0, "done")?;
+    let fit_seconds = start.elapsed().as_secs_f64();
+    let report = HarmonicsReport {
+        z_star,
+        order,
+        vertices: mesh.n_vertices(),
+        fitted_vertices: used.len(),
+        basis_functions: basis_len(order),
+        errors_by_order,
+        aspect_ratio: ratio,
+        singular_values,
+        ellipsoid_aspect_ratio: ellipsoid.aspect_ratio(),
+        ellipsoid_semi_axes: ellipsoid.semi_axes,
+        fit_seconds,
+        seconds: map.report.seconds + fit_seconds,
+        param: map.report.clone(),
+    };
+    Ok(HarmonicsOutput {
+        reconstructed: TriMesh::new(vertices, mesh.faces.clone()),
+        fit: top,
+        report,
+    })
+}
+
+/// The checks [`analyze`] makes before parameterizing: the order is at most 500, the mesh has
+/// at least `(order + 1)^2` vertices used by faces and the design matrix fits in memory.
+pub fn check_request(mesh: &TriMesh, order: usize) -> Result<(), HarmonicsError> {
+    if order > MAX_ORDER {
+        return Err(HarmonicsError::OrderTooLarge { order, max: MAX_ORDER });
+    }
+    let points = referenced(mesh).len();
+    let basis = basis_len(order);
+    if points < basis {
+        return Err(HarmonicsError::TooFewPoints { points, basis, order });
+    }
+    let entries = points.saturating_mul(basis);
+    if entries > MAX_DESIGN_ENTRIES {
+        return Err(HarmonicsError::TooLarge {
+            entries,
+            max: MAX_DESIGN_ENTRIES,
+        });
+    }
+    Ok(())
+}
+
+/// Indices of the vertices some face uses (out-of-range indices ignored), ascending.
+fn referenced(mesh: &TriMesh) -> Vec<usize> {
+    let n = mesh.n_vertices();
+    let mut used = vec![false; n];
+    for f in &mesh.faces {
+        for &v in f {
+            if let Some(u) = used.get_mut(v as usize) {
+                *u = true;
+            }
+        }
+    }
+    (0..n).filter(|&v| used[v]).collect()
+}
