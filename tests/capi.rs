@@ -1,11 +1,305 @@
-//! The C ABI (feature `capi`) called as C would call it.
+//! The C ABI (feature `capi`) called as C would call it: results on a real mesh, cancellation,
+//! and misuse (NULL pointers, out-of-range indices, wrong counts, bad options) returning error
+//! statuses with a message instead of crashing.
 
-use std::ffi::CStr;
+use std::ffi::{c_char, c_void, CStr};
+use std::path::Path;
+use std::ptr::{null, null_mut};
 
+use capmesh::ffi::capmesh_v1_status::*;
 use capmesh::ffi::*;
+use capmesh::TriMesh;
+
+fn read(name: &str) -> TriMesh {
+    capmesh::io::read_mesh(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)).unwrap()
+}
+
+/// Flat arrays kept alive while a view points into them.
+struct Arrays {
+    positions: Vec<f64>,
+    triangles: Vec<u32>,
+}
+
+impl Arrays {
+    fn of(mesh: &TriMesh) -> Self {
+        Self {
+            positions: mesh.vertices.iter().flatten().copied().collect(),
+            triangles: mesh.faces.iter().flatten().copied().collect(),
+        }
+    }
+    fn view(&self) -> capmesh_v1_mesh_view {
+        capmesh_v1_mesh_view {
+            positions: self.positions.as_ptr(),
+            vertex_count: self.positions.len() / 3,
+            triangles: self.triangles.as_ptr(),
+            face_count: self.triangles.len() / 3,
+        }
+    }
+}
+
+fn last_error() -> String {
+    unsafe { CStr::from_ptr(capmesh_v1_last_error()) }.to_string_lossy().into_owned()
+}
+
+fn take_string(s: *mut c_char) -> String {
+    assert!(!s.is_null());
+    let text = unsafe { CStr::from_ptr(s) }.to_string_lossy().into_owned();
+    capmesh_v1_string_free(s);
+    text
+}
+
+/// Copy a result handle into a TriMesh and free it.
+fn take_mesh(m: *mut capmesh_v1_mesh) -> TriMesh {
+    assert!(!m.is_null());
+    let nv = capmesh_v1_mesh_vertex_count(m);
+    let nf = capmesh_v1_mesh_face_count(m);
+    let p = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_positions(m), 3 * nv) };
+    let t = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_triangles(m), 3 * nf) };
+    let mesh = TriMesh::new(p.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(), t.chunks(3).map(|c| [c[0], c[1], c[2]]).collect());
+    capmesh_v1_mesh_free(m);
+    mesh
+}
 
 #[test]
 fn version_is_the_crate_version() {
     let v = unsafe { CStr::from_ptr(capmesh_v1_version()) };
     assert_eq!(v.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
+}
+
+#[test]
+fn remesh_uniform_and_lat_long_through_the_c_abi() {
+    let input = read("open_meg_helmet_babysquid_mne.obj.gz");
+    let arrays = Arrays::of(&input);
+    let view = arrays.view();
+
+    let mut options = capmesh_v1_remesh_options_default();
+    options.faces = 2000;
+    let (mut out, mut report) = (null_mut(), null_mut());
+    let status = unsafe { capmesh_v1_remesh(&view, &options, None, null_mut(), &mut out, &mut report) };
+    assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+    assert_eq!(last_error(), "");
+    let remeshed = take_mesh(out);
+    let report: serde_json::Value = serde_json::from_str(&take_string(report)).unwrap();
+    let faces = remeshed.n_faces() as f64;
+    assert!((faces - 2000.0).abs() <= 200.0, "{faces} faces for 2000 asked");
+    assert_eq!(report["quality"]["faces"].as_u64().unwrap() as usize, remeshed.n_faces());
+    let summary = capmesh::mesh::inspect(&remeshed).unwrap();
+    assert_eq!(summary.kind, Some(capmesh::mesh::SurfaceKind::OpenDisk));
+    assert!(report["quality"]["d_surface_sampled_relative"].as_f64().unwrap() < 0.01);
+
+    // The metrics entry point agrees with the remesh report.
+    let remeshed_arrays = Arrays::of(&remeshed);
+    let mut metrics = null_mut();
+    let status = unsafe { capmesh_v1_metrics(&view, &remeshed_arrays.view(), &mut metrics) };
+    assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+    let metrics: serde_json::Value = serde_json::from_str(&take_string(metrics)).unwrap();
+    let a = metrics["d_face_relative"].as_f64().unwrap();
+    let b = report["quality"]["d_face_relative"].as_f64().unwrap();
+    assert!((a - b).abs() <= 1e-12 * b.max(1.0), "{a} vs {b}");
+
+    options.grid = CAPMESH_V1_GRID_LAT_LONG;
+    options.rings = 10;
+    options.sectors = 24;
+    let mut out = null_mut();
+    let status = unsafe { capmesh_v1_remesh(&view, &options, None, null_mut(), &mut out, null_mut()) };
+    assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+    let lat_long = take_mesh(out);
+    // A fan of `sectors` at the pole and two triangles per quad in the other rings.
+    assert_eq!(lat_long.n_faces(), 24 + 2 * 24 * 9);
+}
+
+#[test]
+fn parameterize_puts_the_vertices_on_the_cap() {
+    let input = read("open_meg_helmet_babysquid_mne.obj.gz");
+    let arrays = Arrays::of(&input);
+    let (mut out, mut report) = (null_mut(), null_mut());
+    let status = unsafe { capmesh_v1_parameterize(&arrays.view(), null(), None, null_mut(), &mut out, &mut report) };
+    assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+    let cap = take_mesh(out);
+    let report: serde_json::Value = serde_json::from_str(&take_string(report)).unwrap();
+    let z_star = report["z_star"].as_f64().unwrap();
+    assert_eq!(cap.faces, input.faces);
+    for p in &cap.vertices {
+        let norm = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        assert!((norm - 1.0).abs() < 1e-9 && p[2] >= z_star - 1e-9, "{p:?} off the cap Z >= {z_star}");
+    }
+}
+
+#[test]
+fn harmonics_reconstruct_the_surface() {
+    let input = read("open_meg_helmet_babysquid_mne.obj.gz");
+    let arrays = Arrays::of(&input);
+    let mut options = capmesh_v1_harmonics_options_default();
+    options.order = 6;
+    let (mut out, mut report) = (null_mut(), null_mut());
+    let status = unsafe { capmesh_v1_harmonics(&arrays.view(), &options, None, null_mut(), &mut out, &mut report) };
+    assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+    let rec = take_mesh(out);
+    let report: serde_json::Value = serde_json::from_str(&take_string(report)).unwrap();
+    assert_eq!(rec.faces, input.faces);
+    assert_eq!(report["order"].as_u64(), Some(6));
+    let errors = report["errors_by_order"].as_array().unwrap();
+    let mean = |n: usize| errors[n]["mean_relative"].as_f64().unwrap();
+    assert!(mean(6) < mean(1), "order 6 error {} not below order 1 error {}", mean(6), mean(1));
+
+    // Too high an order for the mesh is an invalid argument, refused before the work.
+    options.order = 400;
+    let status = unsafe { capmesh_v1_harmonics(&arrays.view(), &options, None, null_mut(), &mut out, null_mut()) };
+    assert_eq!(status, CAPMESH_V1_INVALID_ARGUMENT);
+    assert!(out.is_null());
+    assert!(last_error().contains("basis functions"), "{}", last_error());
+}
+
+struct Calls {
+    count: usize,
+    stages: Vec<i32>,
+    cancel_after: usize,
+}
+
+unsafe extern "C" fn count_and_cancel(user: *mut c_void, stage: i32, fraction: f64, message: *const c_char) -> i32 {
+    let calls = unsafe { &mut *(user as *mut Calls) };
+    assert!((0.0..=1.0).contains(&fraction));
+    assert!(!message.is_null());
+    calls.count += 1;
+    calls.stages.push(stage);
+    i32::from(calls.count >= calls.cancel_after)
+}
+
+#[test]
+fn the_progress_callback_reports_and_cancels() {
+    let input = read("open_meg_helmet_babysquid_mne.obj.gz");
+    let arrays = Arrays::of(&input);
+    let mut calls = Calls { count: 0, stages: vec![], cancel_after: 3 };
+    let (mut out, mut report) = (null_mut(), null_mut());
+    let status = unsafe {
+        capmesh_v1_remesh(&arrays.view(), null(), Some(count_and_cancel), (&mut calls as *mut Calls).cast(), &mut out, &mut report)
+    };
+    assert_eq!(status, CAPMESH_V1_CANCELLED);
+    assert!(out.is_null() && report.is_null());
+    assert_eq!(calls.count, 3, "the callback is not called again after it cancelled");
+    assert_eq!(calls.stages[0], CAPMESH_V1_STAGE_VALIDATE);
+    assert!(last_error().contains("cancel"), "{}", last_error());
+
+    let mut calls = Calls { count: 0, stages: vec![], cancel_after: usize::MAX };
+    let status = unsafe {
+        capmesh_v1_parameterize(&arrays.view(), null(), Some(count_and_cancel), (&mut calls as *mut Calls).cast(), &mut out, null_mut())
+    };
+    assert_eq!(status, CAPMESH_V1_OK);
+    capmesh_v1_mesh_free(out);
+    for s in [CAPMESH_V1_STAGE_VALIDATE, CAPMESH_V1_STAGE_FLATTEN, CAPMESH_V1_STAGE_RADIUS_SEARCH, CAPMESH_V1_STAGE_TRANSPORT, CAPMESH_V1_STAGE_PROJECT] {
+        assert!(calls.stages.contains(&s), "stage {s} never reported: {:?}", calls.stages);
+    }
+}
+
+/// A small valid open mesh: a square of two triangles... made of a 3x3 grid (8 faces).
+fn grid() -> Arrays {
+    let mut positions = vec![];
+    for j in 0..3 {
+        for i in 0..3 {
+            positions.extend([i as f64, j as f64, 0.0]);
+        }
+    }
+    let mut triangles = vec![];
+    for j in 0..2u32 {
+        for i in 0..2u32 {
+            let v = j * 3 + i;
+            triangles.extend([v, v + 1, v + 4, v, v + 4, v + 3]);
+        }
+    }
+    Arrays { positions, triangles }
+}
+
+fn expect(status: capmesh_v1_status, want: capmesh_v1_status, words: &str) {
+    assert_eq!(status, want, "last error: {}", last_error());
+    assert!(last_error().contains(words), "'{}' does not mention '{words}'", last_error());
+}
+
+#[test]
+fn misuse_returns_errors_with_a_message() {
+    let a = grid();
+    let good = a.view();
+    let mut out = 1usize as *mut capmesh_v1_mesh; // garbage the call must overwrite with NULL
+    unsafe {
+        // NULL view, NULL output, NULL arrays.
+        expect(capmesh_v1_remesh(null(), null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "NULL");
+        assert!(out.is_null());
+        expect(capmesh_v1_remesh(&good, null(), None, null_mut(), null_mut(), null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "out_mesh");
+        expect(capmesh_v1_parameterize(&good, null(), None, null_mut(), null_mut(), null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "out_cap");
+        expect(capmesh_v1_harmonics(&good, null(), None, null_mut(), null_mut(), null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "out_reconstructed");
+        let v = capmesh_v1_mesh_view { positions: null(), ..good };
+        expect(capmesh_v1_parameterize(&v, null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "positions is NULL");
+        let v = capmesh_v1_mesh_view { triangles: null(), ..good };
+        expect(capmesh_v1_parameterize(&v, null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "triangles is NULL");
+        let mut report = null_mut();
+        expect(capmesh_v1_metrics(&good, null(), &mut report), CAPMESH_V1_INVALID_ARGUMENT, "remeshed");
+        expect(capmesh_v1_metrics(&good, &good, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "out_report_json");
+
+        // Counts that disagree with the arrays: fewer vertices than the indices use, no faces,
+        // counts whose arrays could not exist.
+        let v = capmesh_v1_mesh_view { vertex_count: 5, ..good };
+        expect(capmesh_v1_parameterize(&v, null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_MESH, "vertex_count is 5");
+        let v = capmesh_v1_mesh_view { face_count: 0, ..good };
+        expect(capmesh_v1_parameterize(&v, null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_MESH, "empty");
+        let v = capmesh_v1_mesh_view { face_count: usize::MAX / 4, ..good };
+        expect(capmesh_v1_parameterize(&v, null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "too large");
+        let v = capmesh_v1_mesh_view { vertex_count: usize::MAX, ..good };
+        expect(capmesh_v1_parameterize(&v, null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "32-bit");
+
+        // Out-of-range index, NaN, non-manifold input.
+        let mut bad = grid();
+        bad.triangles[4] = 9;
+        expect(capmesh_v1_remesh(&bad.view(), null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_MESH, "triangle 1 refers to vertex 9");
+        let mut bad = grid();
+        bad.positions[7] = f64::NAN;
+        expect(capmesh_v1_remesh(&bad.view(), null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_MESH, "vertex 2");
+        let mut bad = grid();
+        bad.triangles.extend([0, 1, 4]);
+        expect(capmesh_v1_remesh(&bad.view(), null(), None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_MESH, "face 8");
+        assert!(out.is_null());
+
+        // Options out of range.
+        let mut o = capmesh_v1_remesh_options_default();
+        o.grid = 7;
+        expect(capmesh_v1_remesh(&good, &o, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "grid = 7");
+        let mut o = capmesh_v1_remesh_options_default();
+        o.faces = 0;
+        expect(capmesh_v1_remesh(&good, &o, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "faces = 0");
+        let mut o = capmesh_v1_remesh_options_default();
+        o.grid = CAPMESH_V1_GRID_LAT_LONG;
+        o.sectors = 2;
+        expect(capmesh_v1_remesh(&good, &o, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "sectors = 2");
+        let mut p = capmesh_v1_param_options_default();
+        p.domain = 9;
+        expect(capmesh_v1_parameterize(&good, &p, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "domain = 9");
+        p.domain = CAPMESH_V1_DOMAIN_RADIUS;
+        p.radius = -1.0;
+        expect(capmesh_v1_parameterize(&good, &p, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "radius");
+        let mut p = capmesh_v1_param_options_default();
+        p.lambda = f64::NAN;
+        expect(capmesh_v1_parameterize(&good, &p, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "lambda");
+        let mut h = capmesh_v1_harmonics_options_default();
+        h.param.domain = CAPMESH_V1_DOMAIN_DISK;
+        h.order = 1;
+        expect(capmesh_v1_harmonics(&good, &h, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "planar disk");
+        assert!(out.is_null());
+    }
+    // Accessors and free functions accept NULL.
+    assert_eq!(capmesh_v1_mesh_vertex_count(null()), 0);
+    assert_eq!(capmesh_v1_mesh_face_count(null()), 0);
+    assert!(capmesh_v1_mesh_positions(null()).is_null());
+    assert!(capmesh_v1_mesh_triangles(null()).is_null());
+    capmesh_v1_mesh_free(null_mut());
+    capmesh_v1_string_free(null_mut());
+}
+
+#[test]
+fn closed_surfaces_are_not_remeshed_yet() {
+    let input = read("closed_bunny_npm.obj.gz");
+    let arrays = Arrays::of(&input);
+    let mut out = null_mut();
+    let mut o = capmesh_v1_remesh_options_default();
+    o.param.smoothing = 0.0;
+    let status = unsafe { capmesh_v1_remesh(&arrays.view(), &o, None, null_mut(), &mut out, null_mut()) };
+    expect(status, CAPMESH_V1_UNSUPPORTED, "closed");
+    assert!(out.is_null());
 }

@@ -220,6 +220,21 @@ typedef struct capmesh_v1_remesh_options {
   struct capmesh_v1_param_options param;
 } capmesh_v1_remesh_options;
 
+/**
+ * Adaptive harmonics options. Start from `capmesh_v1_harmonics_options_default()`.
+ */
+typedef struct capmesh_v1_harmonics_options {
+  /**
+   * Largest order `N` of the fit (`(N + 1)^2` basis functions); the mesh needs at least
+   * that many vertices. Default 10.
+   */
+  uint32_t order;
+  /**
+   * Parameterization options (the planar disk domain is refused).
+   */
+  struct capmesh_v1_param_options param;
+} capmesh_v1_harmonics_options;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -289,6 +304,23 @@ void capmesh_v1_mesh_free(struct capmesh_v1_mesh *mesh);
  * Release a string returned by capmesh (a JSON report). NULL is accepted and ignored.
  */
 void capmesh_v1_string_free(char *text);
+
+/**
+ * The defaults documented on each field.
+ */
+struct capmesh_v1_harmonics_options capmesh_v1_harmonics_options_default(void);
+
+/**
+ * Parameterize `mesh` onto its cap, fit it with the adaptive harmonics of every order up to
+ * `options->order` (NULL: defaults) and reconstruct it. On success `*out_reconstructed` is the
+ * input connectivity at the order-N positions and `*out_report_json` (unless NULL) the JSON
+ * report (`z_star`, `order`, `errors_by_order` with mean/max errors per order,
+ * `aspect_ratio`, `singular_values`, `param`, `seconds`, ...).
+ *
+ * # Safety
+ * As `capmesh_v1_parameterize`.
+ */
+capmesh_v1_status capmesh_v1_harmonics(const struct capmesh_v1_mesh_view *mesh, const struct capmesh_v1_harmonics_options *options, capmesh_v1_progress_fn progress, void *user_data, struct capmesh_v1_mesh **out_reconstructed, char **out_report_json);
 
 /**
  * The defaults documented on each field.

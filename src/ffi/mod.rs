@@ -1,4 +1,4 @@
-//! The C ABI (feature `capi`): `capmesh_v1_*` functions over plain mesh views, opaque result
+//! The C ABI (feature `capi`): `capmesh_v1_*` functions (parameterize, remesh, harmonics, metrics) over plain mesh views, opaque result
 //! handles, status codes with a thread-local last-error text and a progress callback that can
 //! cancel. `cbindgen` turns this module into `cpp/include/capmesh.h` (see `tools/capi-header`).
 //!
@@ -14,6 +14,7 @@
 
 pub mod entry;
 pub mod handle;
+pub mod harmonics;
 pub mod options;
 pub mod progress;
 pub mod status;
@@ -21,6 +22,7 @@ pub mod view;
 
 pub use entry::*;
 pub use handle::*;
+pub use harmonics::*;
 pub use options::*;
 pub use progress::*;
 pub use status::*;

@@ -6,6 +6,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use crate::error::Error;
 use crate::flatten::FlattenError;
+use crate::harmonics::HarmonicsError;
 use crate::omt::OmtError;
 
 /// Result of every fallible `capmesh_v1_*` call. `capmesh_v1_last_error()` has the text.
@@ -64,6 +65,10 @@ pub(crate) fn status_of(error: &Error) -> capmesh_v1_status {
         Error::Unsupported(_) => S::CAPMESH_V1_UNSUPPORTED,
         Error::InvalidOption(_) => S::CAPMESH_V1_INVALID_ARGUMENT,
         Error::Cancelled(_) => S::CAPMESH_V1_CANCELLED,
+        Error::Harmonics(
+            HarmonicsError::OrderTooLarge { .. } | HarmonicsError::TooFewPoints { .. } | HarmonicsError::TooLarge { .. },
+        ) => S::CAPMESH_V1_INVALID_ARGUMENT,
+        Error::Harmonics(_) => S::CAPMESH_V1_NUMERICAL,
     }
 }
 
