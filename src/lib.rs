@@ -34,6 +34,8 @@ pub mod linalg;
 pub mod mesh;
 pub mod metrics;
 pub mod omt;
+#[cfg(feature = "openmesh")]
+pub mod openmesh;
 pub mod progress;
 pub mod remesh;
 
