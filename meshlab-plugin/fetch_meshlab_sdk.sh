@@ -53,6 +53,7 @@ SRC
     # Only the upstream tarball is needed (the headers and vcglib are in it). The mirror may not
     # carry the .dsc / Debian diff of every revision, so download what it has and check the
     # tarball against the SHA-256 in the signed source index.
+    echo "fetch_meshlab_sdk.sh: downloading meshlab $version (a 404 for its .dsc or .debian.tar.xz is harmless)"
     ( cd "$BUILD/apt-src" && apt-get source -qq --download-only "meshlab=$version" ) || true
     orig="meshlab_$SRC_VERSION.orig.tar.xz"
     want=$(apt-cache showsrc meshlab | awk -v f="$orig" -v v="$version" '

@@ -283,7 +283,11 @@ std::map<std::string, QVariant> FilterCapmeshPlugin::harmonics(
 	StringPtr jsonOwner(json);
 	check(status, "harmonics");
 	MeshModel& out = addLayer(md, mesh, in.label() + QString(" harmonics N=%1").arg(options.order));
-	return outputs(*this, json, out);
+	auto values = outputs(*this, json, out);
+	// the reconstruction error at order N: error_mean_relative, error_max_distance, ...
+	for (auto& [key, value] : lastArrayEntry(json, "errors_by_order", "error"))
+		values[key] = value;
+	return values;
 }
 
 MESHLAB_PLUGIN_NAME_EXPORTER(FilterCapmeshPlugin)

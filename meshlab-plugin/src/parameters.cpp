@@ -41,9 +41,9 @@ void addParamOptions(RichParameterList& list, const capmesh_v1_param_options& d)
 		"Only for the 'Cap of fixed radius' domain: the planar disk of this radius is mapped onto "
 		"the cap Z >= (1 - r^2) / (1 + r^2) of the unit sphere (r = 1 is the hemisphere)."));
 	list.addParam(RichFloat(
-		"Lambda", Scalarm(d.lambda), "Lambda of the initial map",
-		"Weight of the quasi-conformal composition of the initial flattening (stretch energy map "
-		"composed with lambda * mu). In Python the keyword is lambda_."));
+		"Lambda", Scalarm(d.lambda), "Quasi-conformal factor (closed surfaces)",
+		"Closed surfaces: the stretch-energy map of the punctured surface is composed with the "
+		"quasi-conformal map of lambda * mu, in [0, 1]. In Python the keyword is lambda_."));
 	list.addParam(RichFloat(
 		"Smoothing", Scalarm(d.smoothing), "Smoothing of the centroid map",
 		"Regularisation of the final transport map; a negative value chooses it automatically, "
@@ -93,8 +93,9 @@ void addHarmonicsOptions(RichParameterList& list, const capmesh_v1_harmonics_opt
 {
 	list.addParam(RichInt(
 		"Order", clampToInt(d.order), "Order N",
-		"Highest order N of the adaptive harmonic basis fitted to the surface on its "
-		"parameterization; higher orders reproduce finer detail."));
+		"Largest order N of the adaptive harmonic fit: (N + 1)^2 basis functions on the cap, so "
+		"the mesh needs at least that many vertices. Higher orders reproduce finer detail. "
+		"The 'Unit disk' domain is refused here."));
 	addParamOptions(list, d.param);
 }
 

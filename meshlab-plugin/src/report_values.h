@@ -18,6 +18,10 @@ namespace capmesh_meshlab {
 /// histories, not results). Throws MLException when `json` is not valid JSON.
 std::map<std::string, QVariant> flattenReport(const char* json);
 
+/// The scalar leaves of the last object of the top-level array `arrayKey` (e.g. the highest
+/// order of "errors_by_order"), keys prefixed with `prefix` + '_'; empty if there is none.
+std::map<std::string, QVariant> lastArrayEntry(const char* json, const QString& arrayKey, const std::string& prefix);
+
 } // namespace capmesh_meshlab
 
 #endif

@@ -1,11 +1,17 @@
 """The capmesh MeshLab plugin seen from PyMeshLab: each filter runs on a real mesh from
 tests/data and its new layer and report are checked."""
+import json
+import re
+import subprocess
+import sys
+
 import numpy as np
 import pymeshlab
 import pytest
 
 # The shared mesh: an open, disk-like MEG helmet (2171 vertices, 4190 faces).
 OPEN_MESH = "open_meg_helmet_babysquid_mne.obj.gz"
+CLOSED_MESH = "closed_bunny_npm.obj.gz"  # genus 0, 1839 vertices
 GENUS2_MESH = "bad_genus2_bird_skull_choi.obj.gz"
 FILTERS = ["capmesh_parameterization", "capmesh_remesh", "capmesh_harmonics_reconstruction"]
 
@@ -72,6 +78,22 @@ def test_parameterization_puts_the_mesh_on_the_adaptive_cap(plugin, mesh_file):
     assert np.allclose(tex.mean(axis=0), 0.5, atol=0.25)
 
 
+def test_closed_surface_goes_to_a_closed_cap_covering_most_of_the_sphere(plugin, mesh_file):
+    ms = load(mesh_file, CLOSED_MESH)
+    nv, nf = ms.current_mesh().vertex_number(), ms.current_mesh().face_number()
+    report = ms.apply_filter("capmesh_parameterization")
+    cap = ms.current_mesh()
+    assert (cap.vertex_number(), cap.face_number()) == (nv, nf)
+    assert topology(ms) == (0, 0, 1)  # still closed, genus 0, one piece
+    v = cap.vertex_matrix()
+    assert np.allclose(np.linalg.norm(v, axis=1), 1.0, atol=1e-9)
+    assert report["z_star"] < 0.0  # a closed surface needs more than a hemisphere
+    assert v[:, 2].min() >= report["z_star"] - 1e-9
+    assert report["flipped_faces"] == 0
+    tex = cap.vertex_tex_coord_matrix()
+    assert tex.min() >= 0.0 and tex.max() <= 1.0
+
+
 def test_parameterization_in_place_moves_the_current_mesh(plugin, mesh_file):
     ms = load(mesh_file, OPEN_MESH)
     nv = ms.current_mesh().vertex_number()
@@ -96,7 +118,9 @@ def test_uniform_remesh_is_an_open_mesh_on_the_input_surface(plugin, mesh_file):
     assert boundary > 0 and genus == 0 and components == 1
     d = surface_distance(ms, 1, 0)
     assert d["max"] < 0.01 * diag  # every new vertex lies on the input surface
-    assert report["quality_d_face_relative"] < 0.5
+    assert report["param_z_star"] > 0.0 and report["quality_faces"] == out.face_number()
+    assert report["quality_d_face_relative"] < 0.1  # face areas near-equal (input: 0.079)
+    assert report["quality_min_angle_deg"] > 20.0
 
 
 def test_lat_long_remesh_has_the_grid_counts(plugin, mesh_file):
@@ -114,6 +138,7 @@ def test_harmonics_reconstruction_improves_with_the_order(plugin, mesh_file):
     ms = load(mesh_file, OPEN_MESH)
     source = ms.current_mesh()
     nv, nf = source.vertex_number(), source.face_number()
+    original = source.vertex_matrix().copy()
     diag = diagonal(source)
     errors = []
     for layer, order in ((1, 2), (2, 8)):
@@ -121,23 +146,78 @@ def test_harmonics_reconstruction_improves_with_the_order(plugin, mesh_file):
         report = ms.apply_filter("capmesh_harmonics_reconstruction", order=order)
         out = ms.current_mesh()
         assert ms.current_mesh_id() == layer
-        assert (out.vertex_number(), out.face_number()) == (nv, nf)
-        assert report["vertex_count"] == nv
-        d = surface_distance(ms, layer, 0)
-        errors.append(d["mean"] / diag)
-    assert errors[1] < errors[0]
-    assert errors[1] < 0.05
+        assert (out.vertex_number(), out.face_number()) == (nv, nf)  # same connectivity
+        assert report["order"] == order and report["basis_functions"] == (order + 1) ** 2
+        assert report["error_order"] == order
+        # capmesh's error at order N, measured again here on the layer MeshLab received
+        moved = np.linalg.norm(out.vertex_matrix() - original, axis=1)
+        assert moved.mean() == pytest.approx(report["error_mean_distance"], rel=1e-9)
+        assert moved.max() == pytest.approx(report["error_max_distance"], rel=1e-9)
+        # MeshLab's distance to the input surface is at most the distance to the same vertex
+        assert surface_distance(ms, layer, 0)["mean"] <= moved.mean() + 1e-12 * diag
+        errors.append(report["error_mean_relative"])
+    assert errors[1] < errors[0] < 0.1
+
+
+def test_progress_reaches_meshlab_callback_in_order(plugin, mesh_file, capfd):
+    ms = pymeshlab.MeshSet(verbose=True)  # verbose: pymeshlab prints each callback call
+    ms.load_new_mesh(mesh_file(OPEN_MESH))
+    capfd.readouterr()
+    ms.apply_filter("capmesh_remesh", grid="Uniform", faces=500)
+    out = capfd.readouterr().err  # pymeshlab prints the callback's lines on stderr
+    steps = [(m.group(1), int(m.group(2)))
+             for m in re.finditer(r"Capmesh remesh: (.*?)\s*\[\s*(\d+)% \]", out)]
+    assert len(steps) >= 3, out
+    assert steps[0][0] == "checking the mesh"
+    assert any(text.startswith("r = ") for text, _ in steps)  # the radius search speaks
+    percents = [p for _, p in steps]
+    assert percents == sorted(percents) and 0 <= percents[0] and percents[-1] <= 100
+
+
+# pymeshlab 2025.7.post1 corrupts its heap when a MeshSet on which a filter raised is destroyed:
+# later load_new_mesh calls fail with std::bad_alloc or crash. MeshLab's own filters do it too
+# (e.g. compute_matrix_by_fitting_to_plane without a selection), so each failing call runs in a
+# child interpreter that reports and exits without running destructors.
+FAILING_CALL = """
+import json, os, sys
+import pymeshlab
+plugin, mesh, name, kwargs = sys.argv[1], sys.argv[2], sys.argv[3], json.loads(sys.argv[4])
+pymeshlab.load_plugin(plugin)
+ms = pymeshlab.MeshSet()
+ms.load_new_mesh(mesh)
+try:
+    ms.apply_filter(name, **kwargs)
+    result = {"raised": False}
+except pymeshlab.PyMeshLabException as e:
+    result = {"raised": True, "message": str(e)}
+result["meshes"] = ms.mesh_number()
+print(json.dumps(result), flush=True)
+os._exit(0)
+"""
+
+
+def failing_call(plugin, mesh_path, name, **kwargs):
+    run = subprocess.run([sys.executable, "-c", FAILING_CALL, str(plugin), mesh_path, name, json.dumps(kwargs)],
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    return json.loads(run.stdout.strip().splitlines()[-1])
 
 
 def test_genus_two_mesh_fails_with_capmesh_message(plugin, mesh_file):
-    ms = load(mesh_file, GENUS2_MESH)
-    with pytest.raises(pymeshlab.PyMeshLabException, match="(?i)capmesh parameterization failed.*genus"):
-        ms.apply_filter("capmesh_parameterization")
-    assert ms.mesh_number() == 1  # no layer added
+    r = failing_call(plugin, mesh_file(GENUS2_MESH), "capmesh_parameterization")
+    assert r["raised"]
+    assert "Capmesh parameterization failed (invalid mesh)" in r["message"]
+    assert "genus 2" in r["message"]  # capmesh's own diagnosis, through capmesh_v1_last_error
+    assert r["meshes"] == 1  # no layer added
+
+
+def test_remeshing_a_closed_surface_is_reported_unsupported(plugin, mesh_file):
+    r = failing_call(plugin, mesh_file(CLOSED_MESH), "capmesh_remesh")
+    assert r["raised"] and "Capmesh remesh failed (unsupported)" in r["message"]
+    assert r["meshes"] == 1
 
 
 def test_bad_parameter_is_refused(plugin, mesh_file):
-    ms = load(mesh_file, OPEN_MESH)
-    with pytest.raises(pymeshlab.PyMeshLabException, match="Rings"):
-        ms.apply_filter("capmesh_remesh", grid="Latitude-longitude", rings=0)
-    assert ms.mesh_number() == 1
+    r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", grid="Latitude-longitude", rings=0)
+    assert r["raised"] and "Rings must be a positive integer" in r["message"]
+    assert r["meshes"] == 1
