@@ -1,6 +1,7 @@
 """The capmesh MeshLab plugin seen from PyMeshLab: each filter runs on a real mesh from
 tests/data and its new layer and report are checked."""
 import json
+import pathlib
 import re
 import subprocess
 import sys
@@ -172,6 +173,16 @@ def test_progress_reaches_meshlab_callback_in_order(plugin, mesh_file, capfd):
     assert any(text.startswith("r = ") for text, _ in steps)  # the radius search speaks
     percents = [p for _, p in steps]
     assert percents == sorted(percents) and 0 <= percents[0] and percents[-1] <= 100
+
+
+def test_refusing_callback_cancels_capmesh():
+    """MeshLab's cancel (CallBackPos returning false) through the plugin's progress bridge:
+    progress_cancel_test (built by build.sh, capmesh only) remeshes a grid with a recording
+    callback (monotone, 0 to >= 90 %) and with a refusing one (CAPMESH_V1_CANCELLED)."""
+    exe = pathlib.Path(__file__).resolve().parent.parent / "build" / "cmake" / "progress_cancel_test"
+    assert exe.is_file(), f"{exe} is missing: run meshlab-plugin/build.sh first"
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0 and run.stdout.startswith("ok"), run.stdout + run.stderr
 
 
 # pymeshlab 2025.7.post1 corrupts its heap when a MeshSet on which a filter raised is destroyed:
