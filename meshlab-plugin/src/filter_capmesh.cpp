@@ -59,7 +59,13 @@ MeshModel& inputMesh(MeshDocument& md)
 MeshModel& addLayer(MeshDocument& md, const capmesh_v1_mesh* result, const QString& label)
 {
 	MeshModel* out = md.addNewMesh("", label, true);
-	fillMesh(result, out->cm);
+	try {
+		fillMesh(result, out->cm);
+	}
+	catch (...) {
+		md.delMesh(out->id()); // no half-made layer
+		throw;
+	}
 	out->updateBoxAndNormals();
 	return *out;
 }
