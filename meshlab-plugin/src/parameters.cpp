@@ -1,0 +1,113 @@
+/* capmesh MeshLab plugin — GPL-3.0-or-later (links MeshLab; see ../README.md). */
+#include "parameters.h"
+
+#include <common/mlexception.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace capmesh_meshlab {
+
+namespace {
+
+const QStringList domainNames = {
+	"Adaptive cap (radius search)", "Unit disk", "Hemisphere", "Sphere", "Cap of fixed radius"};
+const QStringList gridNames = {"Uniform", "Latitude-longitude"};
+
+uint32_t positive(const RichParameterList& list, const char* name)
+{
+	const int v = list.getInt(name);
+	if (v <= 0)
+		throw MLException(QString("Capmesh: parameter %1 must be a positive integer, got %2.").arg(name).arg(v));
+	return uint32_t(v);
+}
+
+int clampToInt(uint32_t v)
+{
+	return int(std::min<uint32_t>(v, uint32_t(std::numeric_limits<int>::max())));
+}
+
+} // namespace
+
+void addParamOptions(RichParameterList& list, const capmesh_v1_param_options& d)
+{
+	list.addParam(RichEnum(
+		"Domain", d.domain, domainNames, "Target domain",
+		"Adaptive (the paper's method): searches the spherical cap Z >= Z* whose area-preserving "
+		"map has the least angle distortion. Unit disk, Hemisphere and Sphere are the fixed-domain "
+		"baselines; 'Cap of fixed radius' uses the disk radius given below."));
+	list.addParam(RichFloat(
+		"Radius", Scalarm(d.radius), "Disk radius (fixed-radius domain)",
+		"Only for the 'Cap of fixed radius' domain: the planar disk of this radius is mapped onto "
+		"the cap Z >= (1 - r^2) / (1 + r^2) of the unit sphere (r = 1 is the hemisphere)."));
+	list.addParam(RichFloat(
+		"Lambda", Scalarm(d.lambda), "Quasi-conformal factor (closed surfaces)",
+		"Closed surfaces: the stretch-energy map of the punctured surface is composed with the "
+		"quasi-conformal map of lambda * mu, in [0, 1]. In Python the keyword is lambda_."));
+	list.addParam(RichFloat(
+		"Smoothing", Scalarm(d.smoothing), "Smoothing of the centroid map",
+		"Regularisation of the final transport map; a negative value chooses it automatically, "
+		"0 is the paper's plain centroid map."));
+}
+
+capmesh_v1_param_options readParamOptions(const RichParameterList& list)
+{
+	capmesh_v1_param_options o = capmesh_v1_param_options_default();
+	o.domain = int32_t(list.getEnum("Domain"));
+	o.radius = double(list.getFloat("Radius"));
+	o.lambda = double(list.getFloat("Lambda"));
+	o.smoothing = double(list.getFloat("Smoothing"));
+	if (o.domain < 0 || o.domain >= domainNames.size())
+		throw MLException(QString("Capmesh: unknown domain %1.").arg(o.domain));
+	return o;
+}
+
+void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& d)
+{
+	list.addParam(RichEnum(
+		"Grid", d.grid, gridNames, "Grid on the cap",
+		"Uniform: a near-uniform triangulation of the cap with about 'Target faces' faces. "
+		"Latitude-longitude: 'Rings' x 'Sectors' quads split into triangles, with a pole fan."));
+	list.addParam(RichInt(
+		"Faces", clampToInt(d.faces), "Target faces (uniform grid)",
+		"Approximate face count of the uniform grid."));
+	list.addParam(RichInt("Rings", clampToInt(d.rings), "Rings (lat-long grid)", "Number of latitude rings."));
+	list.addParam(RichInt("Sectors", clampToInt(d.sectors), "Sectors (lat-long grid)", "Number of longitude sectors."));
+	addParamOptions(list, d.param);
+}
+
+capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
+{
+	capmesh_v1_remesh_options o = capmesh_v1_remesh_options_default();
+	o.grid = int32_t(list.getEnum("Grid"));
+	if (o.grid < 0 || o.grid >= gridNames.size())
+		throw MLException(QString("Capmesh: unknown grid %1.").arg(o.grid));
+	o.faces = positive(list, "Faces");
+	o.rings = positive(list, "Rings");
+	o.sectors = positive(list, "Sectors");
+	o.param = readParamOptions(list);
+	return o;
+}
+
+void addHarmonicsOptions(RichParameterList& list, const capmesh_v1_harmonics_options& d)
+{
+	list.addParam(RichInt(
+		"Order", clampToInt(d.order), "Order N",
+		"Largest order N of the adaptive harmonic fit: (N + 1)^2 basis functions on the cap, so "
+		"the mesh needs at least that many vertices. Higher orders reproduce finer detail. "
+		"The 'Unit disk' domain is refused here."));
+	addParamOptions(list, d.param);
+}
+
+capmesh_v1_harmonics_options readHarmonicsOptions(const RichParameterList& list)
+{
+	capmesh_v1_harmonics_options o = capmesh_v1_harmonics_options_default();
+	const int order = list.getInt("Order");
+	if (order < 0)
+		throw MLException(QString("Capmesh: the order must be >= 0, got %1.").arg(order));
+	o.order = uint32_t(order);
+	o.param = readParamOptions(list);
+	return o;
+}
+
+} // namespace capmesh_meshlab

@@ -1,0 +1,241 @@
+"""The capmesh MeshLab plugin seen from PyMeshLab: each filter runs on a real mesh from
+tests/data and its new layer and report are checked."""
+import json
+import pathlib
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pymeshlab
+import pytest
+
+# The shared mesh: an open, disk-like MEG helmet (2171 vertices, 4190 faces).
+OPEN_MESH = "open_meg_helmet_babysquid_mne.obj.gz"
+CLOSED_MESH = "closed_bunny_npm.obj.gz"  # genus 0, 1839 vertices
+GENUS2_MESH = "bad_genus2_bird_skull_choi.obj.gz"
+FILTERS = ["capmesh_parameterization", "capmesh_remesh", "capmesh_harmonics_reconstruction"]
+
+
+def load(mesh_file, name):
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(mesh_file(name))
+    return ms
+
+
+def topology(ms):
+    """Boundary edges, genus and component count of the current mesh (MeshLab's own measure)."""
+    t = ms.apply_filter("get_topological_measures")
+    return t["boundary_edges"], t["genus"], t["connected_components_number"]
+
+
+def diagonal(mesh):
+    return float(mesh.bounding_box().diagonal())
+
+
+def surface_distance(ms, sampled_id, target_id):
+    """Hausdorff distance (MeshLab's filter) from vertices of one layer to the surface of another."""
+    return ms.apply_filter("get_hausdorff_distance", sampledmesh=sampled_id, targetmesh=target_id,
+                           samplevert=True, sampleedge=False, sampleface=False,
+                           samplenum=ms.mesh(sampled_id).vertex_number())
+
+
+def test_filters_are_registered_with_capmesh_defaults(plugin, mesh_file):
+    for name in FILTERS:
+        assert name in pymeshlab.filter_list()
+    ms = load(mesh_file, OPEN_MESH)
+    param = ms.filter_parameter_values("capmesh_parameterization")
+    assert param["domain"] == 0 and param["smoothing"] < 0 and param["newlayer"]
+    remesh = ms.filter_parameter_values("capmesh_remesh")
+    assert remesh["grid"] == 0 and remesh["faces"] > 0 and remesh["rings"] > 0 and remesh["sectors"] > 0
+    assert ms.filter_parameter_values("capmesh_harmonics_reconstruction")["order"] > 0
+
+
+def test_parameterization_puts_the_mesh_on_the_adaptive_cap(plugin, mesh_file):
+    ms = load(mesh_file, OPEN_MESH)
+    source = ms.current_mesh()
+    nv, nf = source.vertex_number(), source.face_number()
+    boundary, genus, _ = topology(ms)
+    assert boundary > 0 and genus == 0
+
+    report = ms.apply_filter("capmesh_parameterization")
+    assert ms.mesh_number() == 2 and ms.current_mesh_id() == 1
+    cap = ms.current_mesh()
+    assert (cap.vertex_number(), cap.face_number()) == (nv, nf)
+    assert report["vertex_count"] == nv and report["face_count"] == nf
+    assert topology(ms)[0] == boundary  # same connectivity: still open, same boundary
+
+    v = cap.vertex_matrix()
+    assert np.allclose(np.linalg.norm(v, axis=1), 1.0, atol=1e-9)
+    z_star = report["z_star"]
+    assert -1.0 < z_star < 1.0
+    assert v[:, 2].min() >= z_star - 1e-9
+    assert abs(v[:, 2].min() - z_star) < 1e-6  # the boundary lies on the rim Z = Z*
+    assert report["r_star"] == pytest.approx(np.sqrt((1 - z_star) / (1 + z_star)), rel=1e-9)
+    assert 0 <= report["flipped_faces"] < 0.01 * nf
+
+    tex = cap.vertex_tex_coord_matrix()
+    assert tex.shape == (nv, 2) and tex.min() >= 0.0 and tex.max() <= 1.0
+    assert np.allclose(tex.mean(axis=0), 0.5, atol=0.25)
+
+
+def test_closed_surface_goes_to_a_closed_cap_covering_most_of_the_sphere(plugin, mesh_file):
+    ms = load(mesh_file, CLOSED_MESH)
+    nv, nf = ms.current_mesh().vertex_number(), ms.current_mesh().face_number()
+    report = ms.apply_filter("capmesh_parameterization")
+    cap = ms.current_mesh()
+    assert (cap.vertex_number(), cap.face_number()) == (nv, nf)
+    assert topology(ms) == (0, 0, 1)  # still closed, genus 0, one piece
+    v = cap.vertex_matrix()
+    assert np.allclose(np.linalg.norm(v, axis=1), 1.0, atol=1e-9)
+    assert report["z_star"] < 0.0  # a closed surface needs more than a hemisphere
+    assert v[:, 2].min() >= report["z_star"] - 1e-9
+    assert report["flipped_faces"] == 0
+    tex = cap.vertex_tex_coord_matrix()
+    assert tex.min() >= 0.0 and tex.max() <= 1.0
+
+
+def test_parameterization_in_place_moves_the_current_mesh(plugin, mesh_file):
+    ms = load(mesh_file, OPEN_MESH)
+    nv = ms.current_mesh().vertex_number()
+    report = ms.apply_filter("capmesh_parameterization", newlayer=False, domain="Hemisphere")
+    assert ms.mesh_number() == 1
+    v = ms.current_mesh().vertex_matrix()
+    assert v.shape == (nv, 3)
+    assert np.allclose(np.linalg.norm(v, axis=1), 1.0, atol=1e-9)
+    assert report["z_star"] == pytest.approx(0.0, abs=1e-12)  # the hemisphere Z >= 0
+    assert v[:, 2].min() >= -1e-9
+
+
+def test_uniform_remesh_is_an_open_mesh_on_the_input_surface(plugin, mesh_file):
+    ms = load(mesh_file, OPEN_MESH)
+    diag = diagonal(ms.current_mesh())
+    report = ms.apply_filter("capmesh_remesh", grid="Uniform", faces=1500)
+    assert ms.mesh_number() == 2
+    out = ms.current_mesh()
+    assert 1000 <= out.face_number() <= 2000
+    assert report["face_count"] == out.face_number()
+    boundary, genus, components = topology(ms)
+    assert boundary > 0 and genus == 0 and components == 1
+    d = surface_distance(ms, 1, 0)
+    assert d["max"] < 0.01 * diag  # every new vertex lies on the input surface
+    assert report["param_z_star"] > 0.0 and report["quality_faces"] == out.face_number()
+    assert report["quality_d_face_relative"] < 0.1  # face areas near-equal (input: 0.079)
+    assert report["quality_min_angle_deg"] > 20.0
+
+
+def test_lat_long_remesh_has_the_grid_counts(plugin, mesh_file):
+    ms = load(mesh_file, OPEN_MESH)
+    rings, sectors = 8, 16
+    report = ms.apply_filter("capmesh_remesh", grid="Latitude-longitude", rings=rings, sectors=sectors)
+    out = ms.current_mesh()
+    assert out.vertex_number() == 1 + rings * sectors
+    assert out.face_number() == sectors * (2 * rings - 1)
+    assert report["face_count"] == out.face_number()
+    assert topology(ms)[0] == sectors  # the outer ring is the boundary
+
+
+def test_harmonics_reconstruction_improves_with_the_order(plugin, mesh_file):
+    ms = load(mesh_file, OPEN_MESH)
+    source = ms.current_mesh()
+    nv, nf = source.vertex_number(), source.face_number()
+    original = source.vertex_matrix().copy()
+    diag = diagonal(source)
+    errors = []
+    for layer, order in ((1, 2), (2, 8)):
+        ms.set_current_mesh(0)
+        report = ms.apply_filter("capmesh_harmonics_reconstruction", order=order)
+        out = ms.current_mesh()
+        assert ms.current_mesh_id() == layer
+        assert (out.vertex_number(), out.face_number()) == (nv, nf)  # same connectivity
+        assert report["order"] == order and report["basis_functions"] == (order + 1) ** 2
+        assert report["error_order"] == order
+        # capmesh's error at order N, measured again here on the layer MeshLab received
+        moved = np.linalg.norm(out.vertex_matrix() - original, axis=1)
+        assert moved.mean() == pytest.approx(report["error_mean_distance"], rel=1e-9)
+        assert moved.max() == pytest.approx(report["error_max_distance"], rel=1e-9)
+        # MeshLab's distance to the input surface is at most the distance to the same vertex
+        assert surface_distance(ms, layer, 0)["mean"] <= moved.mean() + 1e-12 * diag
+        errors.append(report["error_mean_relative"])
+    assert errors[1] < errors[0] < 0.1
+
+
+def test_progress_reaches_meshlab_callback_in_order(plugin, mesh_file, capfd):
+    ms = pymeshlab.MeshSet(verbose=True)  # verbose: pymeshlab prints each callback call
+    ms.load_new_mesh(mesh_file(OPEN_MESH))
+    capfd.readouterr()
+    ms.apply_filter("capmesh_remesh", grid="Uniform", faces=500)
+    out = capfd.readouterr().err  # pymeshlab prints the callback's lines on stderr
+    steps = [(m.group(1), int(m.group(2)))
+             for m in re.finditer(r"Capmesh remesh: (.*?)\s*\[\s*(\d+)% \]", out)]
+    assert len(steps) >= 3, out
+    assert steps[0][0] == "checking the mesh"
+    assert any(text.startswith("r = ") for text, _ in steps)  # the radius search speaks
+    percents = [p for _, p in steps]
+    assert percents == sorted(percents) and 0 <= percents[0] and percents[-1] <= 100
+
+
+def test_refusing_callback_cancels_capmesh():
+    """MeshLab's cancel (CallBackPos returning false) through the plugin's progress bridge:
+    progress_cancel_test (built by build.sh, capmesh only) remeshes a grid with a recording
+    callback (monotone, 0 to >= 90 %) and with a refusing one (CAPMESH_V1_CANCELLED)."""
+    exe = pathlib.Path(__file__).resolve().parent.parent / "build" / "cmake" / "progress_cancel_test"
+    assert exe.is_file(), f"{exe} is missing: run meshlab-plugin/build.sh first"
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0 and run.stdout.startswith("ok"), run.stdout + run.stderr
+
+
+# pymeshlab 2025.7.post1 corrupts its heap when a MeshSet on which a filter raised is destroyed:
+# later load_new_mesh calls fail with std::bad_alloc or crash. MeshLab's own filters do it too
+# (e.g. compute_matrix_by_fitting_to_plane without a selection), so each failing call runs in a
+# child interpreter that reports and exits without running destructors.
+FAILING_CALL = """
+import json, os, sys
+import pymeshlab
+plugin, mesh, name, kwargs = sys.argv[1], sys.argv[2], sys.argv[3], json.loads(sys.argv[4])
+pymeshlab.load_plugin(plugin)
+ms = pymeshlab.MeshSet()
+ms.load_new_mesh(mesh)
+try:
+    ms.apply_filter(name, **kwargs)
+    result = {"raised": False}
+except pymeshlab.PyMeshLabException as e:
+    result = {"raised": True, "message": str(e)}
+result["meshes"] = ms.mesh_number()
+print(json.dumps(result), flush=True)
+os._exit(0)
+"""
+
+
+def failing_call(plugin, mesh_path, name, **kwargs):
+    run = subprocess.run([sys.executable, "-c", FAILING_CALL, str(plugin), mesh_path, name, json.dumps(kwargs)],
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    return json.loads(run.stdout.strip().splitlines()[-1])
+
+
+def test_genus_two_mesh_fails_with_capmesh_message(plugin, mesh_file):
+    r = failing_call(plugin, mesh_file(GENUS2_MESH), "capmesh_parameterization")
+    assert r["raised"]
+    assert "Capmesh parameterization failed (invalid mesh)" in r["message"]
+    assert "genus 2" in r["message"]  # capmesh's own diagnosis, through capmesh_v1_last_error
+    assert r["meshes"] == 1  # no layer added
+
+
+def test_remeshing_a_closed_surface_gives_a_closed_genus_0_mesh(plugin, mesh_file):
+    ms = load(mesh_file, CLOSED_MESH)
+    diag = diagonal(ms.current_mesh())
+    report = ms.apply_filter("capmesh_remesh", grid="Uniform", faces=2000)
+    assert ms.mesh_number() == 2
+    out = ms.current_mesh()
+    assert abs(out.face_number() - 2000) <= 200
+    assert topology(ms) == (0, 0, 1)  # watertight, genus 0, one piece
+    d = surface_distance(ms, 1, 0)
+    assert d["max"] < 0.01 * diag  # every new vertex lies on the input surface
+    assert report["quality_d_face_relative"] < 0.2  # the bunny's own faces: 0.28
+
+
+def test_bad_parameter_is_refused(plugin, mesh_file):
+    r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", grid="Latitude-longitude", rings=0)
+    assert r["raised"] and "Rings must be a positive integer" in r["message"]
+    assert r["meshes"] == 1
