@@ -105,22 +105,7 @@ pub fn beltrami_abs(p: [[f64; 3]; 3], q: [[f64; 2]; 3]) -> f64 {
 /// The radius-search objective: the mean of `|mu|^2` weighted by planar face area
 /// (the paper's Eq. 12 normalised by the domain's area, so it does not favour small disks).
 pub fn conformal_energy(surface: &[[f64; 3]], plane: &[[f64; 2]], faces: &[[u32; 3]]) -> f64 {
-    let (mut num, mut den) = (0.0, 0.0);
-    for f in faces {
-        let [a, b, c] = f.map(|v| v as usize);
-        let q = [plane[a], plane[b], plane[c]];
-        let area = crate::mesh::geometry::signed_area_2d(q[0], q[1], q[2]).abs();
-        let mu = beltrami_abs([surface[a], surface[b], surface[c]], q);
-        if mu.is_finite() {
-            num += mu * mu * area;
-            den += area;
-        }
-    }
-    if den > 0.0 {
-        num / den
-    } else {
-        f64::INFINITY
-    }
+    weighted_mean_mu2(surface, plane, faces, |_, q| crate::mesh::geometry::signed_area_2d(q[0], q[1], q[2]).abs())
 }
 
 /// The mean of `|mu|^2` weighted by surface face area: the radius objective of punctured
@@ -128,15 +113,26 @@ pub fn conformal_energy(surface: &[[f64; 3]], plane: &[[f64; 2]], faces: &[[u32;
 /// (tiny on the surface, a third of the disk in the plane) that would dominate the
 /// planar-area weighting of [`conformal_energy`].
 pub fn conformal_energy_surface_weighted(surface: &[[f64; 3]], plane: &[[f64; 2]], faces: &[[u32; 3]]) -> f64 {
+    weighted_mean_mu2(surface, plane, faces, |p, _| crate::mesh::geometry::triangle_area(p[0], p[1], p[2]))
+}
+
+/// `sum w |mu|^2 / sum w` over the faces with a finite `|mu|`, `w = weight(surface triangle,
+/// planar triangle)`; infinite when no face counts.
+fn weighted_mean_mu2(
+    surface: &[[f64; 3]],
+    plane: &[[f64; 2]],
+    faces: &[[u32; 3]],
+    weight: impl Fn(&[[f64; 3]; 3], &[[f64; 2]; 3]) -> f64,
+) -> f64 {
     let (mut num, mut den) = (0.0, 0.0);
     for f in faces {
         let [a, b, c] = f.map(|v| v as usize);
-        let p = [surface[a], surface[b], surface[c]];
-        let area = crate::mesh::geometry::triangle_area(p[0], p[1], p[2]);
-        let mu = beltrami_abs(p, [plane[a], plane[b], plane[c]]);
+        let (p, q) = ([surface[a], surface[b], surface[c]], [plane[a], plane[b], plane[c]]);
+        let mu = beltrami_abs(p, q);
         if mu.is_finite() {
-            num += mu * mu * area;
-            den += area;
+            let w = weight(&p, &q);
+            num += mu * mu * w;
+            den += w;
         }
     }
     if den > 0.0 {
