@@ -12,6 +12,6 @@ pub mod stereographic;
 pub mod untangle;
 
 pub use domain::Domain;
-pub use parameterize::{parameterize, CapMap, OpenInitialMap, ParamOptions, ParamReport, RadiusSample};
+pub use parameterize::{parameterize, CapMap, OpenInitialMap, ParamOptions, ParamReport, PunctureEnd, PunctureTrial, RadiusSample};
 pub use regularize::Smoothing;
 pub use stereographic::{inverse_stereographic, radius_of_z_star, stereographic, z_star_of_radius};

@@ -51,6 +51,9 @@ pub struct ParamOptions {
     /// Gauss-Seidel sweeps of the face-level area refinement after transport (see
     /// [`super::area_refine`]); 0 is the paper's map. Default [`DEFAULT_AREA_REFINEMENT`].
     pub area_refinement: usize,
+    /// Which end of a closed surface's principal axis is punctured. Default
+    /// [`PunctureEnd::Best`].
+    pub puncture_end: PunctureEnd,
     /// Vertices closer than this times the bounding-box diagonal are welded before mapping
     /// (coincident vertices make zero-area faces). Default `1e-9`.
     pub weld_tolerance: f64,
@@ -69,6 +72,7 @@ impl Default for ParamOptions {
             open_initial: OpenInitialMap::Composite,
             open_lambda: DEFAULT_OPEN_LAMBDA,
             area_refinement: DEFAULT_AREA_REFINEMENT,
+            puncture_end: PunctureEnd::Best,
             weld_tolerance: 1e-9,
         }
     }
@@ -93,6 +97,42 @@ pub const DEFAULT_OPEN_LAMBDA: f64 = 0.5;
 /// vertices) the centroid map leaves a mean `|d_area|` of 0.2 to 0.5 after fold repair; 50
 /// sweeps bring it below 0.2 (README).
 pub const DEFAULT_AREA_REFINEMENT: usize = 50;
+
+/// Where a closed surface is punctured (paper Sec. 3.2.1 punctures "the bottom" after aligning
+/// the principal axis with `Z`; which end is the bottom is a convention).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PunctureEnd {
+    /// Map with the puncture at each end of the principal axis and keep the map with the
+    /// smaller mean `|d_area|` (twice the work). The result does not depend on how the input
+    /// is oriented, and it is better on the shared meshes (bunny 0.036 instead of 0.187).
+    #[default]
+    Best,
+    /// The end with the lower input `Z` (the paper's "bottom" for an input standing along `Z`).
+    Bottom,
+    /// The other end.
+    Top,
+}
+
+impl std::str::FromStr for PunctureEnd {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "best" => Ok(PunctureEnd::Best),
+            "bottom" => Ok(PunctureEnd::Bottom),
+            "top" => Ok(PunctureEnd::Top),
+            _ => Err(format!("unknown puncture end '{s}': use best, bottom or top")),
+        }
+    }
+}
+
+/// One end tried by [`PunctureEnd::Best`].
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct PunctureTrial {
+    /// The principal axis direction called "up" for this trial.
+    pub axis: [f64; 3],
+    /// Mean `|d_area|` of the map.
+    pub mean_abs_area_distortion: f64,
+}
 
 /// Initial flattening of open surfaces.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -181,6 +221,8 @@ pub struct ParamReport {
     pub flatten: FlattenReport,
     /// The punctured quadrilateral of a closed surface (indices in the welded mesh).
     pub puncture: Option<Puncture>,
+    /// Both ends tried when the puncture end is [`PunctureEnd::Best`] (empty otherwise).
+    pub puncture_trials: Vec<PunctureTrial>,
     /// Wall-clock seconds of the whole parameterization.
     pub seconds: f64,
     /// Seconds spent in the initial flattening.
@@ -214,8 +256,45 @@ impl CapMap {
     }
 }
 
-/// Parameterize a disk-like `mesh` onto the domain of `options`.
+/// Parameterize an open disk-like or closed genus-0 `mesh` onto the domain of `options`.
 pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+    let at = |other_end: bool| {
+        let mut o = options.clone();
+        o.closed.puncture.other_end = other_end;
+        o
+    };
+    match options.puncture_end {
+        PunctureEnd::Bottom => parameterize_once(mesh, &at(false), progress),
+        PunctureEnd::Top => parameterize_once(mesh, &at(true), progress),
+        PunctureEnd::Best => {
+            let first = parameterize_once(mesh, &at(false), progress)?;
+            let Some(p) = first.report.puncture.as_ref() else { return Ok(first) };
+            let trial = |m: &CapMap, axis: [f64; 3]| PunctureTrial { axis, mean_abs_area_distortion: m.report.area_distortion.mean_abs };
+            let first_trial = trial(&first, p.axis);
+            let second = match parameterize_once(mesh, &at(true), progress) {
+                Ok(m) => m,
+                Err(e @ Error::Cancelled(_)) => return Err(e),
+                // The other end could not be mapped (e.g. no regular quad there): keep this one.
+                Err(_) => {
+                    let mut kept = first;
+                    kept.report.puncture_trials = vec![first_trial];
+                    return Ok(kept);
+                }
+            };
+            let second_axis = second.report.puncture.as_ref().map_or([0.0; 3], |q| q.axis);
+            let trials = vec![first_trial, trial(&second, second_axis)];
+            let seconds = first.report.seconds + second.report.seconds;
+            let key = |m: &CapMap| (m.report.flipped_faces, m.report.area_distortion.mean_abs);
+            let mut kept = if key(&second) < key(&first) { second } else { first };
+            kept.report.puncture_trials = trials;
+            kept.report.seconds = seconds;
+            Ok(kept)
+        }
+    }
+}
+
+/// [`parameterize`] with the puncture end fixed by `options.closed.puncture`.
+fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
     let start = Instant::now();
     progress::check(progress, Stage::Validate, 0.0, "checking the mesh")?;
     let diag = mesh.bounding_box_diagonal();
@@ -328,6 +407,7 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
         radius_curve: curve,
         flatten: flatten_report,
         puncture,
+        puncture_trials: Vec::new(),
         seconds: start.elapsed().as_secs_f64(),
         flatten_seconds,
         transport_seconds,

@@ -17,11 +17,13 @@ pub struct PunctureOptions {
     pub max_ratio: f64,
     /// How many candidate edges near the bottom to examine. Default 500.
     pub candidates: usize,
+    /// Puncture at the other end of the principal axis (the input's top). Default `false`.
+    pub other_end: bool,
 }
 
 impl Default for PunctureOptions {
     fn default() -> Self {
-        Self { max_ratio: 1.3, candidates: 500 }
+        Self { max_ratio: 1.3, candidates: 500, other_end: false }
     }
 }
 
@@ -128,6 +130,7 @@ pub fn choose_puncture(
     options: &PunctureOptions,
 ) -> Option<Puncture> {
     let (c, axis) = principal_axis(vertices, faces);
+    let axis = if options.other_end { scale(axis, -1.0) } else { axis };
     let lowest = vertices.iter().map(|p| dot(sub(*p, c), axis)).fold(f64::INFINITY, f64::min);
     let bottom = add(c, scale(axis, lowest));
     let mut order: Vec<(f64, usize)> = edges

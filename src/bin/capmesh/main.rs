@@ -63,6 +63,10 @@ enum Command {
         /// Sweeps of the face-level area refinement after transport (0 is the paper's map).
         #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_AREA_REFINEMENT)]
         area_refinement: usize,
+        /// Closed surfaces: puncture at the best end of the principal axis (maps twice), at
+        /// the bottom (lower input Z) or at the top.
+        #[arg(long, default_value = "best")]
+        puncture_end: capmesh::cap::PunctureEnd,
     },
     /// Remesh a surface through its adaptive cap: a uniform cap mesh of about N faces
     /// (default) or a latitude/longitude mesh, pulled back by the inverse map. Closed
@@ -279,7 +283,7 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             Ok(())
         }
-        Command::Param { input, output, domain, report, initial, lambda, open_lambda, smoothing, area_refinement } => {
+        Command::Param { input, output, domain, report, initial, lambda, open_lambda, smoothing, area_refinement, puncture_end } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -292,6 +296,7 @@ fn run(cli: Cli) -> Result<(), String> {
             options.open_lambda = open_lambda;
             options.smoothing = smoothing;
             options.area_refinement = area_refinement;
+            options.puncture_end = puncture_end;
             let map = parameterize(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
             bar.finish();
             io::write_mesh(&output, &map.cap_mesh(&m)).map_err(|e| e.to_string())?;
