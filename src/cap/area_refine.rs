@@ -4,12 +4,14 @@
 //! shared by several faces: on a coarse or irregular mesh the per-face area distortion of the
 //! centroid map stays at a few tenths, and the fold repair adds to it. This step lowers the
 //! paper's per-face measure itself (Sec. 4, `d_area(T) = log` of the normalised area ratio)
-//! by nonlinear Gauss-Seidel: each free vertex in turn takes a damped Gauss-Newton step on
+//! by nonlinear Gauss-Seidel (vertices in colour classes that share no face, each class in
+//! parallel): each free vertex takes a damped Gauss-Newton step on
 //! `sum_{T at v} d_area(T)^2`, with areas measured on the domain (cap or disk), accepted only
 //! when every incident face stays positively oriented in the plane and the local sum falls.
 //! A fold-free map therefore stays fold-free, and the boundary (fixed vertices) never moves.
 
 use crate::mesh::geometry::{signed_area_2d, triangle_area};
+use rayon::prelude::*;
 
 /// What the refinement did.
 #[derive(Debug, Clone, Copy, Default, serde::Serialize)]
@@ -32,7 +34,7 @@ pub fn refine_areas(
     vertices: &[[f64; 3]],
     faces: &[[u32; 3]],
     fixed: &[bool],
-    lift: &dyn Fn([f64; 2]) -> [f64; 3],
+    lift: &(dyn Fn([f64; 2]) -> [f64; 3] + Sync),
     sweeps: usize,
 ) -> AreaRefineReport {
     let source: Vec<f64> = faces.iter().map(|f| triangle_area(vertices[f[0] as usize], vertices[f[1] as usize], vertices[f[2] as usize])).collect();
@@ -50,7 +52,7 @@ pub fn refine_towards(
     target: &[f64],
     faces: &[[u32; 3]],
     fixed: &[bool],
-    lift: &dyn Fn([f64; 2]) -> [f64; 3],
+    lift: &(dyn Fn([f64; 2]) -> [f64; 3] + Sync),
     sweeps: usize,
 ) -> AreaRefineReport {
     let n = plane.len();
@@ -81,67 +83,22 @@ pub fn refine_towards(
     if faces.is_empty() || !total.is_finite() || total <= 0.0 {
         return report;
     }
+    let colors = color_classes(&incident, faces, fixed);
     for sweep in 0..sweeps {
         // log of the target share of each face's image area: d = ln(a) - offset[t].
         let offset_total = total.ln() - source_total.ln();
-        for v in 0..n {
-            if fixed[v] || incident[v].is_empty() {
-                continue;
-            }
-            let local = &incident[v];
-            let p0 = plane[v];
-            let Some(r0) = local_residuals(v, p0, lifted[v], local, faces, plane, lifted, source, offset_total, orientation) else { continue };
-            let e0: f64 = r0.iter().map(|r| r * r).sum();
-            // Finite-difference Jacobian at the scale of the shortest incident edge.
-            let h = 1e-6 * local_scale(v, local, faces, plane);
-            if h <= 0.0 {
-                continue;
-            }
-            let mut jac = vec![[0.0; 2]; local.len()];
-            let mut ok = true;
-            for k in 0..2 {
-                let mut p = p0;
-                p[k] += h;
-                match local_residuals(v, p, lift(p), local, faces, plane, lifted, source, offset_total, orientation) {
-                    Some(r) => {
-                        for (j, (rp, r)) in jac.iter_mut().zip(r.iter().zip(&r0)) {
-                            j[k] = (rp - r) / h;
-                        }
-                    }
-                    None => ok = false,
-                }
-            }
-            if !ok {
-                continue;
-            }
-            // Gauss-Newton step: (J^T J + eps I) s = -J^T r.
-            let (mut a, mut b, mut c, mut g0, mut g1) = (0.0, 0.0, 0.0, 0.0, 0.0);
-            for (j, r) in jac.iter().zip(&r0) {
-                a += j[0] * j[0];
-                b += j[0] * j[1];
-                c += j[1] * j[1];
-                g0 += j[0] * r;
-                g1 += j[1] * r;
-            }
-            let eps = 1e-9 * (a + c);
-            let (a, c) = (a + eps, c + eps);
-            let det = a * c - b * b;
-            if !(det > 0.0) {
-                continue;
-            }
-            let step = [-(c * g0 - b * g1) / det, -(a * g1 - b * g0) / det];
-            let mut t = 1.0;
-            for _ in 0..8 {
-                let p = [p0[0] + t * step[0], p0[1] + t * step[1]];
-                let lp = lift(p);
-                if let Some(r) = local_residuals(v, p, lp, local, faces, plane, lifted, source, offset_total, orientation) {
-                    if r.iter().map(|r| r * r).sum::<f64>() < e0 {
-                        plane[v] = p;
-                        lifted[v] = lp;
-                        break;
-                    }
-                }
-                t *= 0.5;
+        let local = LocalProblem { faces, source, offset: offset_total, orientation, lift };
+        // Vertices of one colour share no face, so their steps are independent: each phase
+        // computes them in parallel from the current positions, then applies them. This is
+        // Gauss-Seidel in colour order.
+        for class in &colors {
+            let moves: Vec<(usize, [f64; 2], [f64; 3])> = class
+                .par_iter()
+                .filter_map(|&v| local.step(v, &incident[v], plane, lifted).map(|(p, lp)| (v, p, lp)))
+                .collect();
+            for (v, p, lp) in moves {
+                plane[v] = p;
+                lifted[v] = lp;
             }
         }
         let (t, _, e) = measure(lifted);
@@ -157,34 +114,125 @@ pub fn refine_towards(
     report
 }
 
-/// `d_area` of the faces `local` around `v` with `v` at `p` (lifted `lp`), or `None` when one of
-/// them loses the plane's `orientation` (+1 or -1).
-#[allow(clippy::too_many_arguments)]
-fn local_residuals(
-    v: usize,
-    p: [f64; 2],
-    lp: [f64; 3],
-    local: &[usize],
-    faces: &[[u32; 3]],
-    plane: &[[f64; 2]],
-    lifted: &[[f64; 3]],
-    source: &[f64],
+/// The data one vertex's Gauss-Newton step reads.
+struct LocalProblem<'a> {
+    faces: &'a [[u32; 3]],
+    source: &'a [f64],
+    /// `ln(total image area) - ln(total source area)`.
     offset: f64,
+    /// +1 or -1: the orientation planar faces must keep.
     orientation: f64,
-) -> Option<Vec<f64>> {
-    local
-        .iter()
-        .map(|&t| {
-            let f = faces[t];
+    lift: &'a (dyn Fn([f64; 2]) -> [f64; 3] + Sync),
+}
+
+impl LocalProblem<'_> {
+    /// `d_area` of the faces `local` around `v` with `v` at `p` (lifted `lp`) into `out`;
+    /// `false` when one of them loses the plane's orientation or has no area.
+    #[allow(clippy::too_many_arguments)]
+    fn residuals(&self, v: usize, p: [f64; 2], lp: [f64; 3], local: &[usize], plane: &[[f64; 2]], lifted: &[[f64; 3]], out: &mut Vec<f64>) -> bool {
+        out.clear();
+        for &t in local {
+            let f = self.faces[t];
             let q = f.map(|u| if u as usize == v { p } else { plane[u as usize] });
-            if orientation * signed_area_2d(q[0], q[1], q[2]) <= 0.0 {
-                return None;
+            if self.orientation * signed_area_2d(q[0], q[1], q[2]) <= 0.0 {
+                return false;
             }
             let l = f.map(|u| if u as usize == v { lp } else { lifted[u as usize] });
             let a = triangle_area(l[0], l[1], l[2]);
-            (a > 0.0 && source[t] > 0.0).then(|| a.ln() - source[t].ln() - offset)
-        })
-        .collect()
+            if !(a > 0.0 && self.source[t] > 0.0) {
+                return false;
+            }
+            out.push(a.ln() - self.source[t].ln() - self.offset);
+        }
+        true
+    }
+
+    /// A damped Gauss-Newton step of the free vertex `v` on `sum_{T at v} d_area(T)^2`:
+    /// the new planar and lifted position, or `None` when no step lowers the sum.
+    fn step(&self, v: usize, local: &[usize], plane: &[[f64; 2]], lifted: &[[f64; 3]]) -> Option<([f64; 2], [f64; 3])> {
+        if local.is_empty() {
+            return None;
+        }
+        let (mut r0, mut r) = (Vec::with_capacity(local.len()), Vec::with_capacity(local.len()));
+        let p0 = plane[v];
+        if !self.residuals(v, p0, lifted[v], local, plane, lifted, &mut r0) {
+            return None;
+        }
+        let e0: f64 = r0.iter().map(|r| r * r).sum();
+        // Finite-difference Jacobian at the scale of the shortest incident edge.
+        let h = 1e-6 * local_scale(v, local, self.faces, plane);
+        if !(h > 0.0) {
+            return None;
+        }
+        let mut jac = vec![[0.0; 2]; local.len()];
+        for k in 0..2 {
+            let mut p = p0;
+            p[k] += h;
+            if !self.residuals(v, p, (self.lift)(p), local, plane, lifted, &mut r) {
+                return None;
+            }
+            for (j, (rp, r)) in jac.iter_mut().zip(r.iter().zip(&r0)) {
+                j[k] = (rp - r) / h;
+            }
+        }
+        // Gauss-Newton step: (J^T J + eps I) s = -J^T r.
+        let (mut a, mut b, mut c, mut g0, mut g1) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for (j, r) in jac.iter().zip(&r0) {
+            a += j[0] * j[0];
+            b += j[0] * j[1];
+            c += j[1] * j[1];
+            g0 += j[0] * r;
+            g1 += j[1] * r;
+        }
+        let eps = 1e-9 * (a + c);
+        let (a, c) = (a + eps, c + eps);
+        let det = a * c - b * b;
+        if !(det > 0.0) {
+            return None;
+        }
+        let step = [-(c * g0 - b * g1) / det, -(a * g1 - b * g0) / det];
+        let mut t = 1.0;
+        for _ in 0..8 {
+            let p = [p0[0] + t * step[0], p0[1] + t * step[1]];
+            let lp = (self.lift)(p);
+            if self.residuals(v, p, lp, local, plane, lifted, &mut r) && r.iter().map(|r| r * r).sum::<f64>() < e0 {
+                return Some((p, lp));
+            }
+            t *= 0.5;
+        }
+        None
+    }
+}
+
+/// The free vertices with incident faces, in classes of which no two share a face (greedy
+/// colouring in vertex order; planar meshes need about 7 to 9 classes).
+fn color_classes(incident: &[Vec<usize>], faces: &[[u32; 3]], fixed: &[bool]) -> Vec<Vec<usize>> {
+    let n = incident.len();
+    let mut color = vec![usize::MAX; n];
+    let mut classes: Vec<Vec<usize>> = Vec::new();
+    let mut taken: Vec<bool> = Vec::new();
+    for v in 0..n {
+        if fixed[v] || incident[v].is_empty() {
+            continue;
+        }
+        taken.clear();
+        taken.resize(classes.len() + 1, false);
+        for &t in &incident[v] {
+            for &u in &faces[t] {
+                let c = color[u as usize];
+                if c != usize::MAX {
+                    taken[c] = true;
+                }
+            }
+        }
+        let c = taken.iter().position(|&x| !x).unwrap_or(classes.len());
+        if c == classes.len() {
+            classes.push(Vec::new());
+        }
+        color[v] = c;
+        classes[c].push(v);
+    }
+    classes
 }
 
 /// Shortest planar edge at `v` among its incident faces.

@@ -12,6 +12,7 @@ use super::planar_transport::TransportMap;
 use super::untangle::{untangle, UntangleReport};
 use crate::linalg::{CotanWeights, SolveError, SpdSolver};
 use crate::metrics::{area_distortion, Stats};
+use rayon::prelude::*;
 
 /// Smooths centroid maps of one mesh; keeps the factorization's symbolic part.
 pub struct CentroidSmoother<'a> {
@@ -72,8 +73,8 @@ impl<'a> CentroidSmoother<'a> {
 /// How the centroid map is regularised.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Smoothing {
-    /// Try each of [`AUTO_KAPPAS`] (0 included) and keep the one with the smallest measured
-    /// mean `|d_area|` after fold repair.
+    /// Search [`AUTO_KAPPAS`] (0 included) for the one with the smallest measured mean
+    /// `|d_area|` after fold repair (see [`regularise`]).
     Auto,
     /// A fixed `kappa` (0 is the paper's plain centroid map).
     Fixed(f64),
@@ -129,6 +130,12 @@ pub struct Regularised {
 /// Regularise the transport map `map` of the surface `(vertices, faces)`, repair its folds
 /// and keep the candidate with no fold left and the smallest mean `|d_area|` measured on the
 /// domain (`to_domain` lifts planar positions onto the cap or the planar disk).
+///
+/// With [`Smoothing::Auto`] the candidates [`AUTO_KAPPAS`] are searched as a unimodal
+/// sequence (on every shared mesh the measured distortion falls, then rises, along it): start
+/// at 0.3 and 1, then walk towards the better neighbour, two candidates at a time in
+/// parallel, until both neighbours of the best are worse. That is 4 to 5 candidates instead
+/// of 7, in 2 or 3 parallel rounds.
 #[allow(clippy::too_many_arguments)]
 pub fn regularise(
     map: &TransportMap,
@@ -138,27 +145,63 @@ pub fn regularise(
     fixed: &[bool],
     radius: f64,
     smoothing: Smoothing,
-    to_domain: &dyn Fn(&[[f64; 2]]) -> Vec<[f64; 3]>,
+    to_domain: &(dyn Fn(&[[f64; 2]]) -> Vec<[f64; 3]> + Sync),
 ) -> Result<Regularised, SolveError> {
+    let evaluate = |kappa: f64| -> Result<Candidate, SolveError> {
+        let mut p = CentroidSmoother::new(weights, fixed).smooth(&map.centroids, &map.masses, kappa)?;
+        let rep = untangle(&mut p, faces, fixed, radius);
+        let d = Stats::of(area_distortion(vertices, &to_domain(&p), faces)).mean_abs;
+        let trial = SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before };
+        Ok(Candidate { key: (rep.folded_after > 0, d), trial, kept: Regularised { kappa, positions: p, untangle: rep, trials: Vec::new() } })
+    };
     let kappas: Vec<f64> = match smoothing {
         Smoothing::Auto => AUTO_KAPPAS.to_vec(),
         Smoothing::Fixed(k) => vec![k],
     };
-    let mut smoother = CentroidSmoother::new(weights, fixed);
-    let mut trials = Vec::new();
-    // Best (any folds left, mean |d_area|) so far, lexicographically.
-    let mut best: Option<((bool, f64), Regularised)> = None;
-    for kappa in kappas {
-        let mut p = smoother.smooth(&map.centroids, &map.masses, kappa)?;
-        let rep = untangle(&mut p, faces, fixed, radius);
-        let d = Stats::of(area_distortion(vertices, &to_domain(&p), faces)).mean_abs;
-        trials.push(SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before });
-        let key = (rep.folded_after > 0, d);
-        if best.as_ref().map_or(true, |(k, _)| key < *k) {
-            best = Some((key, Regularised { kappa, positions: p, untangle: rep, trials: Vec::new() }));
+    let mut done: Vec<Option<Candidate>> = (0..kappas.len()).map(|_| None).collect();
+    let mut order = Vec::new();
+    let mut next: Vec<usize> = if kappas.len() > 1 { vec![3.min(kappas.len() - 2), 4.min(kappas.len() - 1)] } else { vec![0] };
+    while !next.is_empty() {
+        let results: Vec<Result<Candidate, SolveError>> = next.par_iter().map(|&i| evaluate(kappas[i])).collect();
+        for (&i, r) in next.iter().zip(results) {
+            done[i] = Some(r?);
+            order.push(i);
         }
+        let best = best_index(&done).ok_or(SolveError::Singular { what: "regularisation (no candidate)" })?;
+        let open = |i: Option<usize>| i.filter(|&i| i < kappas.len() && done[i].is_none());
+        let (below, above) = (open(best.checked_sub(1)), open(Some(best + 1)));
+        next = match (below, above) {
+            (Some(b), Some(a)) => vec![b, a],
+            // Walking one way: also try the candidate after the neighbour, in parallel.
+            (Some(b), None) => [Some(b), open(b.checked_sub(1))].into_iter().flatten().collect(),
+            (None, Some(a)) => [Some(a), open(Some(a + 1))].into_iter().flatten().collect(),
+            (None, None) => Vec::new(),
+        };
     }
-    let (_, mut kept) = best.ok_or(SolveError::Singular { what: "regularisation (no candidate)" })?;
+    let best = best_index(&done).ok_or(SolveError::Singular { what: "regularisation (no candidate)" })?;
+    let trials = order.iter().filter_map(|&i| done[i].as_ref().map(|c| c.trial)).collect();
+    let mut kept = done[best].take().map(|c| c.kept).ok_or(SolveError::Singular { what: "regularisation (no candidate)" })?;
     kept.trials = trials;
     Ok(kept)
+}
+
+/// One evaluated smoothing strength.
+struct Candidate {
+    /// (any fold left, mean `|d_area|`), compared lexicographically.
+    key: (bool, f64),
+    trial: SmoothingTrial,
+    kept: Regularised,
+}
+
+/// Index of the evaluated candidate with the smallest key (the first among equals).
+fn best_index(done: &[Option<Candidate>]) -> Option<usize> {
+    let mut best: Option<(usize, (bool, f64))> = None;
+    for (i, c) in done.iter().enumerate() {
+        if let Some(c) = c {
+            if best.map_or(true, |(_, k)| c.key < k) {
+                best = Some((i, c.key));
+            }
+        }
+    }
+    best.map(|(i, _)| i)
 }

@@ -8,7 +8,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Conj, Mat, Par, Side};
 
 /// Errors of the sparse direct solvers.
@@ -72,11 +72,46 @@ impl TripletList {
         self.n
     }
 
-    /// Assemble into a compressed sparse column matrix.
+    /// Assemble into a compressed sparse column matrix: a counting sort by column, then each
+    /// column's few entries sorted by row with duplicates summed. O(entries), several times
+    /// faster than a general sort of the triplets (assembly was 15% of a parameterization).
     pub fn assemble(&self, what: &'static str) -> Result<SparseColMat<usize, f64>, SolveError> {
-        SparseColMat::try_new_from_triplets(self.n, self.n, &self.entries).map_err(|e| {
-            SolveError::Backend { what, message: format!("{e:?}") }
-        })
+        let n = self.n;
+        let mut count = vec![0usize; n + 1];
+        for t in &self.entries {
+            if t.row >= n || t.col >= n {
+                return Err(SolveError::Backend { what, message: format!("entry ({}, {}) outside a {n} x {n} matrix", t.row, t.col) });
+            }
+            count[t.col + 1] += 1;
+        }
+        for c in 0..n {
+            count[c + 1] += count[c];
+        }
+        let mut next = count.clone();
+        let mut bucket = vec![(0usize, 0.0f64); self.entries.len()];
+        for t in &self.entries {
+            bucket[next[t.col]] = (t.row, t.val);
+            next[t.col] += 1;
+        }
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::with_capacity(self.entries.len());
+        let mut values = Vec::with_capacity(self.entries.len());
+        col_ptr.push(0);
+        for c in 0..n {
+            let column = &mut bucket[count[c]..count[c + 1]];
+            column.sort_unstable_by_key(|e| e.0);
+            for &(r, v) in column.iter() {
+                if row_idx.len() > col_ptr[c] && row_idx.last() == Some(&r) {
+                    *values.last_mut().expect("values parallel to rows") += v;
+                } else {
+                    row_idx.push(r);
+                    values.push(v);
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        Ok(SparseColMat::new(symbolic, values))
     }
 }
 
@@ -208,5 +243,40 @@ impl LuSolver {
         // Safety: `numeric` came from `factorize_numeric_lu` of a matrix with `sym`'s pattern.
         LuRef::new_unchecked(sym, numeric).solve_in_place_with_conj(Conj::No, m.as_mut(), Par::Seq, MemStack::new(&mut buf));
         copy_back(&m, rhs, what)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn assembly_sums_duplicates_like_a_dense_accumulation() {
+        let n = 7;
+        let mut t = TripletList::new(n);
+        let mut dense = vec![vec![0.0; n]; n];
+        let mut state = 12345u64;
+        for _ in 0..200 {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            let (r, c) = ((state >> 33) as usize % n, (state >> 45) as usize % n);
+            let v = ((state >> 20) % 1000) as f64 / 100.0 - 5.0;
+            t.push(r, c, v);
+            dense[r][c] += v;
+        }
+        let m = t.assemble("test").unwrap();
+        let s = m.symbolic();
+        for c in 0..n {
+            let rows = &s.row_idx()[s.col_ptr()[c]..s.col_ptr()[c + 1]];
+            assert!(rows.windows(2).all(|w| w[0] < w[1]), "rows sorted and unique in column {c}");
+        }
+        let back = m.to_dense();
+        for r in 0..n {
+            for c in 0..n {
+                assert!((back[(r, c)] - dense[r][c]).abs() < 1e-12, "({r}, {c})");
+            }
+        }
+        let mut bad = TripletList::new(2);
+        bad.push(2, 0, 1.0);
+        assert!(bad.assemble("test").is_err());
     }
 }
