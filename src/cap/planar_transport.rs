@@ -49,6 +49,14 @@ impl<'a> PlanarTransport<'a> {
     /// Vertex positions of `h_r o r g` on the disk of radius `r` (cell centroids), the cell
     /// masses and the solver's report.
     pub fn map_at(&mut self, r: f64, progress: &dyn Progress) -> Result<TransportMap, OmtError> {
+        let tolerance = self.options.tolerance;
+        self.map_at_tolerance(r, tolerance, progress)
+    }
+
+    /// [`PlanarTransport::map_at`] with the relative mass tolerance `tolerance` instead of the
+    /// options' (the radius search needs less accuracy than the final map).
+    pub fn map_at_tolerance(&mut self, r: f64, tolerance: f64, progress: &dyn Progress) -> Result<TransportMap, OmtError> {
+        let options = OtOptions { tolerance, ..self.options.clone() };
         let solver = match self.solver.as_mut() {
             Some(s) => {
                 let scale = r / s.radius();
@@ -60,7 +68,7 @@ impl<'a> PlanarTransport<'a> {
                 self.solver.insert(OtSolver::new(&sites, r, self.density)?)
             }
         };
-        let (cells, report) = solver.solve(self.target, &self.options, progress)?;
+        let (cells, report) = solver.solve(self.target, &options, progress)?;
         self.newton_iterations += report.iterations;
         self.solves += 1;
         let centroids = positions(&cells, solver.sites(), self.on_boundary, r);
