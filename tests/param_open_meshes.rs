@@ -30,6 +30,14 @@ fn check(name: &str) {
         a.seconds
     );
     assert_eq!(a.flipped_faces, 0, "{name}: folded faces");
+    // The Newton matrices keep a pattern that covers the flips (omt::newton): most iterations
+    // of the radius search reuse a symbolic factorization.
+    assert!(
+        a.transport_symbolic_factorizations < a.newton_iterations,
+        "{name}: {} symbolic factorizations for {} Newton iterations",
+        a.transport_symbolic_factorizations,
+        a.newton_iterations
+    );
     assert!(a.area_distortion.mean_abs <= 0.12, "{name}: mean |d_area| = {}", a.area_distortion.mean_abs);
     assert!(
         a.angle_distortion.mean_abs <= h.angle_distortion.mean_abs,

@@ -221,6 +221,9 @@ pub struct ParamReport {
     pub newton_iterations: usize,
     /// Transport solves.
     pub transport_solves: usize,
+    /// Symbolic factorizations of the transport Newton matrices (the other iterations
+    /// reused one).
+    pub transport_symbolic_factorizations: usize,
     /// Radius search evaluations in order.
     pub radius_curve: Vec<RadiusSample>,
     /// Initial flattening report.
@@ -423,6 +426,7 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
         smoothing_trials: trials,
         newton_iterations: transport.newton_iterations,
         transport_solves: transport.solves,
+        transport_symbolic_factorizations: transport.symbolic_factorizations,
         radius_curve: curve,
         flatten: flatten_report,
         puncture,

@@ -32,6 +32,8 @@ pub struct PlanarTransport<'a> {
     pub newton_iterations: usize,
     /// Transport solves.
     pub solves: usize,
+    /// Symbolic factorizations of Newton matrices over all radii.
+    pub symbolic_factorizations: usize,
 }
 
 impl<'a> PlanarTransport<'a> {
@@ -43,7 +45,7 @@ impl<'a> PlanarTransport<'a> {
         density: &'a dyn RadialDensity,
         options: OtOptions,
     ) -> Self {
-        Self { disk_map, on_boundary, target, density, options, solver: None, newton_iterations: 0, solves: 0 }
+        Self { disk_map, on_boundary, target, density, options, solver: None, newton_iterations: 0, solves: 0, symbolic_factorizations: 0 }
     }
 
     /// Vertex positions of `h_r o r g` on the disk of radius `r` (cell centroids), the cell
@@ -70,6 +72,7 @@ impl<'a> PlanarTransport<'a> {
         };
         let (cells, report) = solver.solve(self.target, &options, progress)?;
         self.newton_iterations += report.iterations;
+        self.symbolic_factorizations += report.symbolic_factorizations;
         self.solves += 1;
         let centroids = positions(&cells, solver.sites(), self.on_boundary, r);
         Ok(TransportMap { centroids, masses: cells.mass, report })

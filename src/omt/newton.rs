@@ -92,6 +92,8 @@ pub struct OtReport {
     pub max_cell_error: f64,
     /// Edge flips done to keep the triangulation regular.
     pub flips: usize,
+    /// Symbolic factorizations of the Newton matrix (the rest reused one).
+    pub symbolic_factorizations: usize,
     /// Smallest damping factor accepted.
     pub min_step: f64,
     /// Continuation steps taken after plain Newton stalled (0 when it did not).
@@ -111,6 +113,9 @@ pub struct OtSolver<'d> {
     radius: f64,
     density: &'d dyn RadialDensity,
     linear: SpdSolver,
+    /// Off-diagonal pattern `(i << 32) | j`, `0 < i < j`, of the Newton matrices (sorted):
+    /// a superset of the current triangulation's edges (see [`OtSolver::update_pattern`]).
+    pattern: Vec<u64>,
 }
 
 impl<'d> OtSolver<'d> {
@@ -120,7 +125,7 @@ impl<'d> OtSolver<'d> {
             return Err(OmtError::Invalid(format!("radius {radius} must be positive")));
         }
         let tri = RegularTriangulation::delaunay(sites)?;
-        Ok(Self { tri, radius, density, linear: SpdSolver::new() })
+        Ok(Self { tri, radius, density, linear: SpdSolver::new(), pattern: Vec::new() })
     }
 
     /// The current radius.
@@ -180,6 +185,7 @@ impl<'d> OtSolver<'d> {
         let disk = self.density.disk_mass(self.radius);
         let tau: Vec<f64> = target.iter().map(|t| t * disk / total).collect();
         let flips0 = self.tri.flips;
+        let symbolic0 = self.linear.symbolic_count;
         let mut report = OtReport { min_step: 1.0, ..Default::default() };
         let saved = self.tri.clone();
         let cells = match self.newton(&tau, options, options.max_iterations, &mut report, progress) {
@@ -198,6 +204,7 @@ impl<'d> OtSolver<'d> {
         report.mass_error = err;
         report.max_cell_error = cells.mass.iter().zip(&tau).map(|(m, t)| (m - t).abs() / t).fold(0.0, f64::max);
         report.flips = self.tri.flips - flips0;
+        report.symbolic_factorizations = self.linear.symbolic_count - symbolic0;
         Ok((cells, report))
     }
 
@@ -304,13 +311,41 @@ impl<'d> OtSolver<'d> {
         }
     }
 
+    /// Keep [`OtSolver::pattern`] a superset of the current Hessian's off-diagonal pattern.
+    /// Flips change the regular triangulation's edges at most Newton iterations, and each
+    /// change would cost a new symbolic factorization (AMD ordering included, as much as the
+    /// numeric one); flips mostly toggle between the two diagonals of the same quads, so the
+    /// union of the patterns seen soon stops growing. It restarts from the current edges when
+    /// it holds 20% more than them, so the extra fill stays small.
+    fn update_pattern(&mut self, cells: &CellIntegrals) {
+        let mut current: Vec<u64> = cells.edges.iter().filter(|e| e.0 > 0 && e.1 > 0).map(|&(i, j, _)| ((i as u64) << 32) | j as u64).collect();
+        current.sort_unstable();
+        current.dedup();
+        if current.iter().all(|k| self.pattern.binary_search(k).is_ok()) {
+            return;
+        }
+        let mut union = std::mem::take(&mut self.pattern);
+        union.extend_from_slice(&current);
+        union.sort_unstable();
+        union.dedup();
+        self.pattern = if union.len() as f64 > 1.2 * current.len() as f64 { current } else { union };
+    }
+
     /// Solve `H dw = tau - m` with `w_0` pinned.
     fn newton_direction(&mut self, cells: &CellIntegrals, tau: &[f64]) -> Result<Vec<f64>, SolveError> {
         let n = tau.len();
         if n == 1 {
             return Ok(vec![0.0]);
         }
-        let mut trip = TripletList::with_capacity(n - 1, 4 * cells.edges.len() + n);
+        let mut trip = TripletList::with_capacity(n - 1, 4 * cells.edges.len() + 2 * self.pattern.len() + n);
+        self.update_pattern(cells);
+        // Explicit zeros on the kept pattern: while it covers the current edges the matrix
+        // keeps its sparsity pattern and the symbolic factorization is reused.
+        for &k in &self.pattern {
+            let (i, j) = ((k >> 32) as usize, (k & 0xffff_ffff) as usize);
+            trip.push(i - 1, j - 1, 0.0);
+            trip.push(j - 1, i - 1, 0.0);
+        }
         let mut diag = vec![0.0; n];
         for &(i, j, c) in &cells.edges {
             diag[i as usize] += c;
