@@ -2,7 +2,8 @@
 //! Collision Detection, 5.1.5) with a uniform grid of triangle bounding boxes searched in
 //! growing shells.
 
-use crate::mesh::geometry::{add, dot, norm, scale, sub};
+use crate::mesh::fasthash::FastMap;
+use crate::mesh::geometry::{add, cross, dot, norm, scale, sub};
 use crate::mesh::TriMesh;
 
 /// Closest point of triangle `abc` to `p`.
@@ -48,12 +49,16 @@ pub fn closest_on_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -
 }
 
 /// Distance queries against one mesh.
+///
+/// Faces are binned into a sparse uniform grid (a hash map of the occupied cells) whose cell
+/// is about two mean edge lengths, so a cell holds a handful of faces whatever the mesh's
+/// shape; a query searches shells of cells around its own until no closer face can exist.
 pub struct SurfaceDistance<'a> {
     mesh: &'a TriMesh,
     lo: [f64; 3],
     cell: f64,
-    n: [usize; 3],
-    cells: Vec<Vec<u32>>,
+    n: [i64; 3],
+    cells: FastMap<u64, Vec<u32>>,
 }
 
 impl<'a> SurfaceDistance<'a> {
@@ -61,25 +66,35 @@ impl<'a> SurfaceDistance<'a> {
     pub fn new(mesh: &'a TriMesh) -> Self {
         let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [1.0; 3]));
         let ext = sub(hi, lo);
-        let vol = (ext[0].max(1e-12) * ext[1].max(1e-12) * ext[2].max(1e-12)).max(1e-300);
-        let target_cells = (mesh.n_faces() as f64 / 2.0).max(1.0);
-        let cell = (vol / target_cells).cbrt().max(norm(ext) * 1e-4).max(1e-300);
-        let n = [0, 1, 2].map(|k| ((ext[k] / cell).ceil() as usize).clamp(1, 512));
-        let mut cells = vec![Vec::new(); n[0] * n[1] * n[2]];
-        let this_idx = |x: f64, k: usize| (((x - lo[k]) / cell).floor().max(0.0) as usize).min(n[k] - 1);
+        let diag = norm(ext);
+        let area: f64 = mesh
+            .faces
+            .iter()
+            .map(|t| {
+                let q = t.map(|v| mesh.vertices[v as usize]);
+                0.5 * norm(cross(sub(q[1], q[0]), sub(q[2], q[0])))
+            })
+            .sum();
+        let mean_edge = (4.0 * area / (3f64.sqrt() * mesh.n_faces().max(1) as f64)).sqrt();
+        // At most 2^20 cells along an axis (keys pack 21 bits per axis).
+        let cell = (2.0 * mean_edge).max(diag * 1e-6).max(1e-300);
+        let n = [0, 1, 2].map(|k| ((ext[k] / cell).ceil() as i64).clamp(1, 1 << 20));
+        let cell = [0, 1, 2].map(|k| ext[k] / n[k] as f64).into_iter().fold(cell, f64::max);
+        let mut cells: FastMap<u64, Vec<u32>> = FastMap::default();
+        let index = |x: f64, k: usize| (((x - lo[k]) / cell).floor() as i64).clamp(0, n[k] - 1);
         for (f, t) in mesh.faces.iter().enumerate() {
             let q = t.map(|v| mesh.vertices[v as usize]);
-            let mut i0 = [0usize; 3];
-            let mut i1 = [0usize; 3];
+            let mut i0 = [0i64; 3];
+            let mut i1 = [0i64; 3];
             for k in 0..3 {
                 let (a, b) = (q[0][k].min(q[1][k]).min(q[2][k]), q[0][k].max(q[1][k]).max(q[2][k]));
-                i0[k] = this_idx(a, k);
-                i1[k] = this_idx(b, k);
+                i0[k] = index(a, k);
+                i1[k] = index(b, k);
             }
             for z in i0[2]..=i1[2] {
                 for y in i0[1]..=i1[1] {
                     for x in i0[0]..=i1[0] {
-                        cells[(z * n[1] + y) * n[0] + x].push(f as u32);
+                        cells.entry(key(x, y, z)).or_default().push(f as u32);
                     }
                 }
             }
@@ -89,31 +104,90 @@ impl<'a> SurfaceDistance<'a> {
 
     /// Distance from `p` to the surface.
     pub fn distance(&self, p: [f64; 3]) -> f64 {
-        let c = [0, 1, 2].map(|k| (((p[k] - self.lo[k]) / self.cell).floor().max(0.0) as usize).min(self.n[k] - 1));
+        let c = [0, 1, 2].map(|k| (((p[k] - self.lo[k]) / self.cell).floor() as i64).clamp(0, self.n[k] - 1));
         let mut best = f64::INFINITY;
         let max_ring = self.n[0].max(self.n[1]).max(self.n[2]);
+        // Distance from p to the faces of its own cell's block, for the stopping test below.
+        let inside = [0, 1, 2].map(|k| {
+            let x = (p[k] - self.lo[k]) / self.cell - c[k] as f64;
+            x.min(1.0 - x).max(0.0)
+        });
+        let margin = inside.iter().cloned().fold(f64::INFINITY, f64::min) * self.cell;
         for ring in 0..=max_ring {
-            let lo = c.map(|x| x.saturating_sub(ring));
+            let lo = c.map(|x| (x - ring).max(0));
             let hi = [0, 1, 2].map(|k| (c[k] + ring).min(self.n[k] - 1));
             for z in lo[2]..=hi[2] {
                 for y in lo[1]..=hi[1] {
-                    for x in lo[0]..=hi[0] {
-                        let on_shell = ring == 0 || x == lo[0] || x == hi[0] || y == lo[1] || y == hi[1] || z == lo[2] || z == hi[2];
-                        if !on_shell {
-                            continue;
+                    let inner_row = ring > 0 && z != lo[2] && z != hi[2] && y != lo[1] && y != hi[1];
+                    let xs: &[i64] = if inner_row { &[lo[0], hi[0]] } else { &[] };
+                    let mut visit = |x: i64| {
+                        if let Some(faces) = self.cells.get(&key(x, y, z)) {
+                            for &f in faces {
+                                let t = self.mesh.faces[f as usize].map(|v| self.mesh.vertices[v as usize]);
+                                best = best.min(norm(sub(p, closest_on_triangle(p, t[0], t[1], t[2]))));
+                            }
                         }
-                        for &f in &self.cells[(z * self.n[1] + y) * self.n[0] + x] {
-                            let t = self.mesh.faces[f as usize].map(|v| self.mesh.vertices[v as usize]);
-                            best = best.min(norm(sub(p, closest_on_triangle(p, t[0], t[1], t[2]))));
+                    };
+                    if inner_row {
+                        // Only the two ends of an inner row are on the shell.
+                        visit(xs[0]);
+                        if xs[1] != xs[0] {
+                            visit(xs[1]);
+                        }
+                    } else {
+                        for x in lo[0]..=hi[0] {
+                            visit(x);
                         }
                     }
                 }
             }
-            // Points outside the searched block are at least `ring * cell` away.
-            if best <= ring as f64 * self.cell {
+            // Points outside the searched block are at least `ring * cell` (plus p's margin
+            // inside its own cell) away.
+            if best <= ring as f64 * self.cell + margin {
                 break;
             }
         }
         best
+    }
+}
+
+/// Hash key of a grid cell (21 bits per axis).
+#[inline]
+fn key(x: i64, y: i64, z: i64) -> u64 {
+    ((x as u64) << 42) | ((y as u64) << 21) | z as u64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes::{icosphere, uv_sphere};
+
+    /// The grid search against the brute-force minimum over every face, for points inside,
+    /// on and far outside the surface, on a uniform and a very non-uniform mesh.
+    #[test]
+    fn grid_search_matches_brute_force() {
+        for mesh in [icosphere(3), uv_sphere(40, 7)] {
+            let index = SurfaceDistance::new(&mesh);
+            let mut state = 7u64;
+            let mut rand = || {
+                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                (state >> 11) as f64 / (1u64 << 53) as f64
+            };
+            for i in 0..400 {
+                let radius = [0.3, 1.0, 1.01, 3.0, 50.0][i % 5];
+                let d = [rand() - 0.5, rand() - 0.5, rand() - 0.5];
+                let p = scale(d, radius / norm(d).max(1e-9));
+                let brute = mesh
+                    .faces
+                    .iter()
+                    .map(|t| {
+                        let q = t.map(|v| mesh.vertices[v as usize]);
+                        norm(sub(p, closest_on_triangle(p, q[0], q[1], q[2])))
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                let fast = index.distance(p);
+                assert!((fast - brute).abs() <= 1e-12 * (1.0 + brute), "point {p:?}: grid {fast}, brute force {brute}");
+            }
+        }
     }
 }
