@@ -800,3 +800,31 @@ fn huge_announced_counts_fail_fast() {
     }
     assert!(t.elapsed().as_secs_f64() < 1.0);
 }
+
+/// Meshes built in memory (library and C ABI users) go through the same hard checks before
+/// welding: a face with an index out of range or a repeated index is an error, not a face
+/// silently dropped (found by the `pipeline` fuzz target: the remesh pull-back then indexed
+/// past the map).
+#[test]
+fn in_memory_meshes_with_bad_faces_are_refused_by_the_pipeline() {
+    use capmesh::cap::{parameterize, ParamOptions};
+    use capmesh::remesh::{remesh, RemeshOptions};
+    use capmesh::{Error, NoProgress};
+    let cap = spherical_cap(0.3, 4, 12);
+    let n = cap.vertices.len() as u32;
+    let mut out_of_range = cap.clone();
+    out_of_range.faces[3][1] = n + 1;
+    let mut repeated = cap.clone();
+    repeated.faces[5] = [2, 2, 7];
+    for (m, what) in [(&out_of_range, "index out of range"), (&repeated, "repeated index")] {
+        let p = parameterize(m, &ParamOptions::default(), &NoProgress).err();
+        let r = remesh(m, &RemeshOptions::default(), &NoProgress).err();
+        for e in [p, r] {
+            match e {
+                Some(Error::Mesh(MeshError::IndexOutOfRange { .. })) if what == "index out of range" => {}
+                Some(Error::Mesh(MeshError::DegenerateFace { .. })) if what == "repeated index" => {}
+                other => panic!("{what}: {other:?}"),
+            }
+        }
+    }
+}

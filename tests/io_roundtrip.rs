@@ -380,3 +380,21 @@ fn large_obj_reads_fast() {
     assert_eq!(back.n_faces(), mesh.n_faces());
     assert!(elapsed.as_secs_f64() < 2.0, "{elapsed:?}");
 }
+
+#[test]
+fn gzip_bytes_read_like_the_file_and_garbage_is_an_error() {
+    use std::io::Write;
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/closed_bunny_npm.obj.gz");
+    let from_file = capmesh::io::read_mesh(&path).unwrap();
+    let from_bytes = capmesh::io::read_mesh_from_gzip_bytes(&std::fs::read(&path).unwrap(), capmesh::io::Format::Obj).unwrap();
+    assert_eq!(from_file.vertices, from_bytes.vertices);
+    assert_eq!(from_file.faces, from_bytes.faces);
+    let err = capmesh::io::read_mesh_from_gzip_bytes(b"not gzip at all", capmesh::io::Format::Obj).unwrap_err();
+    assert!(err.to_string().contains("<bytes>.gz"), "{err}");
+    // A valid gzip stream of an empty file.
+    let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    enc.write_all(b"").unwrap();
+    let empty = enc.finish().unwrap();
+    let err = capmesh::io::read_mesh_from_gzip_bytes(&empty, capmesh::io::Format::Obj).unwrap_err();
+    assert!(matches!(err, capmesh::io::ReadError::Empty { .. }), "{err}");
+}

@@ -316,6 +316,9 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
 fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
     let start = Instant::now();
     progress::check(progress, Stage::Validate, 0.0, "checking the mesh")?;
+    // Hard errors of the input as given (indices out of range, repeated indices in a face,
+    // NaN, duplicate faces, non-manifold edges): welding would drop such faces silently.
+    crate::mesh::validate::checked_topology(mesh)?;
     let diag = mesh.bounding_box_diagonal();
     let welded = repair::weld_coincident(mesh, options.weld_tolerance * diag);
     let work = &welded.mesh;

@@ -145,6 +145,13 @@ pub fn read_mesh_from_bytes(bytes: &[u8], format: Format) -> Result<TriMesh, Rea
     parse(Path::new("<bytes>"), bytes, format)
 }
 
+/// Decompress gzip `bytes` and parse the result (for fuzzing and tests). Errors name the file
+/// `<bytes>.gz`.
+pub fn read_mesh_from_gzip_bytes(bytes: &[u8], format: Format) -> Result<TriMesh, ReadError> {
+    let path = Path::new("<bytes>.gz");
+    parse(path, &gunzip(path, bytes)?, format)
+}
+
 fn parse(path: &Path, bytes: &[u8], format: Format) -> Result<TriMesh, ReadError> {
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(ReadError::Empty {

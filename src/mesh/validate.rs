@@ -105,7 +105,7 @@ fn unreferenced(mesh: &TriMesh) -> Vec<bool> {
 }
 
 /// The hard checks shared by [`inspect`] and [`validate`].
-fn checked_topology(mesh: &TriMesh) -> Result<Topology, MeshError> {
+pub(crate) fn checked_topology(mesh: &TriMesh) -> Result<Topology, MeshError> {
     check_not_empty(mesh)?;
     check_indices(mesh)?;
     check_finite(mesh)?;

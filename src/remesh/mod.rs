@@ -67,8 +67,14 @@ pub struct RemeshReport {
     pub area_equalization: AreaRefineReport,
     /// Quality of the result against the input.
     pub quality: RemeshMetrics,
-    /// Seconds of the whole remeshing (parameterization included).
+    /// Seconds of the whole remeshing (parameterization and quality metrics included).
     pub seconds: f64,
+    /// Seconds spent building the cap grid and pulling it back.
+    pub pullback_seconds: f64,
+    /// Seconds spent in the area equalization.
+    pub equalize_seconds: f64,
+    /// Seconds spent measuring the result ([`RemeshReport::quality`]).
+    pub metrics_seconds: f64,
 }
 
 /// Remesh a surface through its adaptive cap: an open disk gives an open disk, a closed
@@ -80,6 +86,7 @@ pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) 
     let closed = map.report.kind != SurfaceKind::OpenDisk.to_string();
     let z_star = map.report.z_star.ok_or_else(|| Error::InvalidOption("remeshing needs a spherical cap domain, not the planar disk".into()))?;
     progress::check(progress, Stage::Remesh, 0.0, "pulling the cap mesh back")?;
+    let t_pull = Instant::now();
     let cap = match options.grid {
         CapGrid::Uniform { faces } => grid::uniform_cap(z_star, faces.max(1)),
         CapGrid::LatLong { rings, sectors } => grid::lat_long(z_star, rings, sectors),
@@ -97,9 +104,23 @@ pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) 
         let positions = pullback::pull_back(mesh, &map.plane, &cap.vertices).ok_or_else(no_face)?;
         (cap, positions)
     };
+    let pullback_seconds = t_pull.elapsed().as_secs_f64();
     progress::check(progress, Stage::Remesh, 0.5, "equalizing the areas")?;
+    let t_eq = Instant::now();
     let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &grid_mesh, first_fixed, &mut positions, options.area_equalization);
+    let equalize_seconds = t_eq.elapsed().as_secs_f64();
     let out = TriMesh::new(positions, grid_mesh.faces);
+    let t_metrics = Instant::now();
     let quality = remesh_metrics(mesh, &out);
-    Ok((out, RemeshReport { param: map.report, area_equalization: equalization, quality, seconds: start.elapsed().as_secs_f64() }))
+    let metrics_seconds = t_metrics.elapsed().as_secs_f64();
+    let report = RemeshReport {
+        param: map.report,
+        area_equalization: equalization,
+        quality,
+        seconds: start.elapsed().as_secs_f64(),
+        pullback_seconds,
+        equalize_seconds,
+        metrics_seconds,
+    };
+    Ok((out, report))
 }

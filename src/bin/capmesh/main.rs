@@ -201,13 +201,17 @@ fn run(cli: Cli) -> Result<(), String> {
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
             }
+            let t_read = std::time::Instant::now();
             let m = read(&input)?;
+            let read_seconds = t_read.elapsed().as_secs_f64();
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
             let options = RemeshOptions { grid, area_equalization, ..Default::default() };
             let (out, rep) = remesh(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
             bar.finish();
+            let t_write = std::time::Instant::now();
             io::write_mesh(&output, &out).map_err(|e| e.to_string())?;
+            let write_seconds = t_write.elapsed().as_secs_f64();
             println!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
             print_quality(&rep.quality);
             if let Some(path) = report {
@@ -222,6 +226,11 @@ fn run(cli: Cli) -> Result<(), String> {
                     d_surface_sampled_relative: f64,
                     min_angle_deg: f64,
                     seconds: f64,
+                    read_seconds: f64,
+                    pullback_seconds: f64,
+                    equalize_seconds: f64,
+                    metrics_seconds: f64,
+                    write_seconds: f64,
                     area_equalization: capmesh::cap::area_refine::AreaRefineReport,
                     parameterization: &'a capmesh::ParamReport,
                 }
@@ -238,6 +247,11 @@ fn run(cli: Cli) -> Result<(), String> {
                         d_surface_sampled_relative: q.d_surface_sampled_relative,
                         min_angle_deg: q.min_angle_deg,
                         seconds: rep.seconds,
+                        read_seconds,
+                        pullback_seconds: rep.pullback_seconds,
+                        equalize_seconds: rep.equalize_seconds,
+                        metrics_seconds: rep.metrics_seconds,
+                        write_seconds,
                         area_equalization: rep.area_equalization,
                         parameterization: &rep.param,
                     },

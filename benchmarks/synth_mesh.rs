@@ -1,0 +1,53 @@
+//! Writes the synthetic meshes of the stage benchmark (`benchmarks/stage_bench.sh`):
+//!
+//! * `open N`: a bumpy height-field disk (`grid_disk` rings, near-equilateral triangles) of
+//!   about N vertices: `z = 0.25 sin(3x) cos(4y) + 0.3 x^2`;
+//! * `closed S`: a bumpy ellipsoid, the icosphere of `S` subdivisions (`10 * 4^S + 2`
+//!   vertices) with radius `1 + 0.08 sin(5x) sin(4y) sin(3z)` and axes (1, 0.7, 1.4).
+//!
+//! `cargo run --release --example synth_mesh -- open 100000 out.ply`
+
+use capmesh::io::write_mesh;
+use capmesh::mesh::shapes::{grid_disk, icosphere};
+use std::path::Path;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args.len() != 4 {
+        eprintln!("usage: synth_mesh open N OUT | closed SUBDIVISIONS OUT");
+        std::process::exit(2);
+    }
+    let size: usize = args[2].parse().unwrap_or_else(|_| {
+        eprintln!("synth_mesh: '{}' is not a count", args[2]);
+        std::process::exit(2)
+    });
+    let mut mesh = match args[1].as_str() {
+        "open" => {
+            // 1 + 3 n (n + 1) vertices.
+            let n = (((size as f64 - 1.0) / 3.0).sqrt().round() as usize).max(1);
+            let mut m = grid_disk(n);
+            for p in &mut m.vertices {
+                p[2] = 0.25 * (3.0 * p[0]).sin() * (4.0 * p[1]).cos() + 0.3 * p[0] * p[0];
+            }
+            m
+        }
+        "closed" => {
+            let mut m = icosphere(size);
+            for p in &mut m.vertices {
+                let r = 1.0 + 0.08 * (5.0 * p[0]).sin() * (4.0 * p[1]).sin() * (3.0 * p[2]).sin();
+                *p = [r * p[0], 0.7 * r * p[1], 1.4 * r * p[2]];
+            }
+            m
+        }
+        other => {
+            eprintln!("synth_mesh: unknown kind '{other}' (open or closed)");
+            std::process::exit(2)
+        }
+    };
+    mesh.vertices.shrink_to_fit();
+    if let Err(e) = write_mesh(Path::new(&args[3]), &mesh) {
+        eprintln!("synth_mesh: {e}");
+        std::process::exit(1);
+    }
+    println!("{} vertices, {} faces -> {}", mesh.vertices.len(), mesh.faces.len(), args[3]);
+}
