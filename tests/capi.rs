@@ -309,3 +309,31 @@ fn closed_surfaces_remesh_into_closed_meshes() {
     let summary = capmesh::mesh::inspect(&remeshed).unwrap();
     assert_eq!(summary.kind, Some(capmesh::mesh::SurfaceKind::ClosedSphere));
 }
+
+/// The refinement, equalization and puncture-end options reach the library: the report says
+/// what was asked, and an unknown puncture end is refused.
+#[test]
+fn refinement_equalization_and_puncture_end_options_are_passed_through() {
+    let input = read("closed_bunny_npm.obj.gz");
+    let arrays = Arrays::of(&input);
+    let (mut out, mut report) = (null_mut(), null_mut());
+    let mut o = capmesh_v1_remesh_options_default();
+    assert_eq!((o.param.area_refinement, o.param.puncture_end, o.area_equalization), (50, CAPMESH_V1_PUNCTURE_BEST, 30));
+    o.faces = 1000;
+    o.param.area_refinement = 0;
+    o.param.puncture_end = CAPMESH_V1_PUNCTURE_TOP;
+    o.area_equalization = 0;
+    let status = unsafe { capmesh_v1_remesh(&arrays.view(), &o, None, null_mut(), &mut out, &mut report) };
+    assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+    take_mesh(out);
+    let report: serde_json::Value = serde_json::from_str(&take_string(report)).unwrap();
+    assert_eq!(report["param"]["area_refinement"]["sweeps"], 0, "{}", report["param"]["area_refinement"]);
+    assert_eq!(report["area_equalization"]["sweeps"], 0);
+    // One end only: no trials of the other.
+    assert_eq!(report["param"]["puncture_trials"].as_array().map(|a| a.len()), Some(0));
+    let mut p = capmesh_v1_param_options_default();
+    p.puncture_end = 5;
+    let status = unsafe { capmesh_v1_parameterize(&arrays.view(), &p, None, null_mut(), &mut out, null_mut()) };
+    assert_eq!(status, CAPMESH_V1_INVALID_ARGUMENT);
+    assert!(last_error().contains("puncture_end = 5"), "{}", last_error());
+}

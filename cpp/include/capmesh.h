@@ -42,6 +42,22 @@
 #define CAPMESH_V1_DOMAIN_RADIUS 4
 
 /**
+ * `capmesh_v1_param_options.puncture_end`: closed surfaces are mapped with the puncture at
+ * each end of the principal axis and the better map is kept (default).
+ */
+#define CAPMESH_V1_PUNCTURE_BEST 0
+
+/**
+ * `capmesh_v1_param_options.puncture_end`: the end with the lower input Z.
+ */
+#define CAPMESH_V1_PUNCTURE_BOTTOM 1
+
+/**
+ * `capmesh_v1_param_options.puncture_end`: the other end.
+ */
+#define CAPMESH_V1_PUNCTURE_TOP 2
+
+/**
  * `capmesh_v1_remesh_options.grid`: near-equilateral faces, about `faces` of them (default).
  */
 #define CAPMESH_V1_GRID_UNIFORM 0
@@ -184,6 +200,15 @@ typedef struct capmesh_v1_param_options {
    * 0 = the paper's plain centroid map.
    */
   double smoothing;
+  /**
+   * Sweeps of the face-level area refinement after transport; 0 = the paper's map.
+   * Default 50.
+   */
+  uint32_t area_refinement;
+  /**
+   * One of `CAPMESH_V1_PUNCTURE_*` (closed surfaces). Default best (0).
+   */
+  int32_t puncture_end;
 } capmesh_v1_param_options;
 
 /**
@@ -218,6 +243,11 @@ typedef struct capmesh_v1_remesh_options {
    * Parameterization options.
    */
   struct capmesh_v1_param_options param;
+  /**
+   * Sweeps of the area equalization of the pulled-back mesh; 0 = the plain pull-back.
+   * Default 30.
+   */
+  uint32_t area_equalization;
 } capmesh_v1_remesh_options;
 
 /**

@@ -1,9 +1,10 @@
 //! Option structs of the C ABI, their defaults and their conversion to the library's options.
 
 use super::status::Failure;
+use crate::cap::parameterize::{PunctureEnd, DEFAULT_AREA_REFINEMENT};
 use crate::cap::{Domain, ParamOptions, Smoothing};
 use crate::flatten::closed::DEFAULT_LAMBDA;
-use crate::remesh::{CapGrid, RemeshOptions};
+use crate::remesh::{CapGrid, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
 
 /// `capmesh_v1_param_options.domain`: the adaptive cap of the paper (default).
 pub const CAPMESH_V1_DOMAIN_ADAPTIVE: i32 = 0;
@@ -15,6 +16,14 @@ pub const CAPMESH_V1_DOMAIN_HEMISPHERE: i32 = 2;
 pub const CAPMESH_V1_DOMAIN_SPHERE: i32 = 3;
 /// `capmesh_v1_param_options.domain`: a fixed disk radius, `radius` (cap `Z >= (1-r^2)/(1+r^2)`).
 pub const CAPMESH_V1_DOMAIN_RADIUS: i32 = 4;
+
+/// `capmesh_v1_param_options.puncture_end`: closed surfaces are mapped with the puncture at
+/// each end of the principal axis and the better map is kept (default).
+pub const CAPMESH_V1_PUNCTURE_BEST: i32 = 0;
+/// `capmesh_v1_param_options.puncture_end`: the end with the lower input Z.
+pub const CAPMESH_V1_PUNCTURE_BOTTOM: i32 = 1;
+/// `capmesh_v1_param_options.puncture_end`: the other end.
+pub const CAPMESH_V1_PUNCTURE_TOP: i32 = 2;
 
 /// `capmesh_v1_remesh_options.grid`: near-equilateral faces, about `faces` of them (default).
 pub const CAPMESH_V1_GRID_UNIFORM: i32 = 0;
@@ -35,6 +44,11 @@ pub struct capmesh_v1_param_options {
     /// Centroid-map regularisation strength kappa; negative = automatic choice (default),
     /// 0 = the paper's plain centroid map.
     pub smoothing: f64,
+    /// Sweeps of the face-level area refinement after transport; 0 = the paper's map.
+    /// Default 50.
+    pub area_refinement: u32,
+    /// One of `CAPMESH_V1_PUNCTURE_*` (closed surfaces). Default best (0).
+    pub puncture_end: i32,
 }
 
 /// Remeshing options. Start from `capmesh_v1_remesh_options_default()`.
@@ -52,12 +66,22 @@ pub struct capmesh_v1_remesh_options {
     pub sectors: u32,
     /// Parameterization options.
     pub param: capmesh_v1_param_options,
+    /// Sweeps of the area equalization of the pulled-back mesh; 0 = the plain pull-back.
+    /// Default 30.
+    pub area_equalization: u32,
 }
 
 /// The defaults documented on each field.
 #[no_mangle]
 pub extern "C" fn capmesh_v1_param_options_default() -> capmesh_v1_param_options {
-    capmesh_v1_param_options { domain: CAPMESH_V1_DOMAIN_ADAPTIVE, radius: 1.0, lambda: DEFAULT_LAMBDA, smoothing: -1.0 }
+    capmesh_v1_param_options {
+        domain: CAPMESH_V1_DOMAIN_ADAPTIVE,
+        radius: 1.0,
+        lambda: DEFAULT_LAMBDA,
+        smoothing: -1.0,
+        area_refinement: DEFAULT_AREA_REFINEMENT as u32,
+        puncture_end: CAPMESH_V1_PUNCTURE_BEST,
+    }
 }
 
 /// The defaults documented on each field.
@@ -69,6 +93,7 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
         rings: 40,
         sectors: 64,
         param: capmesh_v1_param_options_default(),
+        area_equalization: DEFAULT_AREA_EQUALIZATION as u32,
     }
 }
 
@@ -108,9 +133,17 @@ pub(crate) fn param_options(o: &capmesh_v1_param_options) -> Result<ParamOptions
         k if k < 0.0 => Smoothing::Auto,
         k => Smoothing::Fixed(k),
     };
+    let puncture_end = match o.puncture_end {
+        CAPMESH_V1_PUNCTURE_BEST => PunctureEnd::Best,
+        CAPMESH_V1_PUNCTURE_BOTTOM => PunctureEnd::Bottom,
+        CAPMESH_V1_PUNCTURE_TOP => PunctureEnd::Top,
+        e => return Err(Failure::invalid_argument(format!("puncture_end = {e} is not 0 (best), 1 (bottom) or 2 (top)"))),
+    };
     let mut options = ParamOptions::default().with_domain(domain);
     options.closed.lambda = lambda;
     options.smoothing = smoothing;
+    options.area_refinement = o.area_refinement as usize;
+    options.puncture_end = puncture_end;
     Ok(options)
 }
 
@@ -134,5 +167,5 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         }
         g => return Err(Failure::invalid_argument(format!("grid = {g} is not 0 (uniform) or 1 (lat-long)"))),
     };
-    Ok(RemeshOptions { grid, param: param_options(&o.param)?, ..RemeshOptions::default() })
+    Ok(RemeshOptions { grid, param: param_options(&o.param)?, area_equalization: o.area_equalization as usize })
 }

@@ -1,0 +1,254 @@
+#!/usr/bin/env python3
+"""Stage times and peak memory of `capmesh remesh` (parameterization + remeshing at about 5000
+faces) on the bundled meshes and on synthetic meshes of about 10k, 100k and 1M vertices, with
+MeshLab's isotropic explicit remeshing timed on the same inputs in the same run.
+
+Each case is a child process (its peak RSS from os.wait4) with a time limit; a failure or a
+timeout is recorded as such. Results: benchmarks/results/stage_bench.{md,json}. Run through
+benchmarks/stage_bench.sh, which builds capmesh and the synthetic meshes.
+
+    stage_bench.py [--sizes 10k,100k,1m] [--skip-meshlab] [--skip-shared] [--limit SECONDS]
+"""
+
+import argparse
+import datetime
+import json
+import os
+import platform
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.path.join(ROOT, "tests", "data")
+RESULTS = os.path.join(ROOT, "benchmarks", "results")
+TARGET_DIR = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+CAPMESH = os.path.join(TARGET_DIR, "release", "capmesh")
+SYNTH = os.path.join(TARGET_DIR, "release", "examples", "synth_mesh")
+MESHLAB_PY = os.path.join(ROOT, "benchmarks", ".venv", "bin", "python")
+FACES = 5000
+SIZES = {"10k": 10_000, "100k": 100_000, "1m": 1_000_000}
+# Targets of issue 7 on the 2-core machine, by case name: (seconds, GiB).
+TARGETS = {"open_hand_choi": (2.0, None), "100k": (5.0, None), "1m": (60.0, 4.0)}
+
+# MeshLab's isotropic explicit remeshing with the target edge of an equilateral mesh of FACES
+# faces over the input's area (as in benchmarks/meshlab_compare.py), 10 iterations; only the
+# filter is timed, like capmesh's stages below (reading and writing are reported apart).
+MESHLAB_SCRIPT = r"""
+import json, math, sys, time
+import pymeshlab as ml
+path, faces = sys.argv[1], int(sys.argv[2])
+ms = ml.MeshSet()
+t0 = time.perf_counter()
+ms.load_new_mesh(path)
+read = time.perf_counter() - t0
+area = ms.get_geometric_measures()["surface_area"]
+diag = ms.current_mesh().bounding_box().diagonal()
+edge = math.sqrt(4.0 * area / (math.sqrt(3.0) * faces))
+t0 = time.perf_counter()
+ms.meshing_isotropic_explicit_remeshing(targetlen=ml.PercentageValue(100.0 * edge / diag), iterations=10)
+seconds = time.perf_counter() - t0
+print(json.dumps({"seconds": seconds, "read_seconds": read, "faces": ms.current_mesh().face_number()}))
+"""
+
+
+def run_child(argv, limit):
+    """Run argv; return (exit status or 'timeout', wall seconds, peak RSS MiB, stdout)."""
+    start = time.perf_counter()
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    deadline = start + limit
+    status = None
+    out = b""
+    while True:
+        pid, st, usage = os.wait4(proc.pid, os.WNOHANG)
+        if pid == proc.pid:
+            status = os.waitstatus_to_exitcode(st)
+            break
+        if time.perf_counter() > deadline:
+            os.killpg(proc.pid, signal.SIGKILL)
+            pid, st, usage = os.wait4(proc.pid, 0)
+            status = "timeout"
+            break
+        time.sleep(0.05)
+    wall = time.perf_counter() - start
+    out = proc.stdout.read().decode(errors="replace")
+    err = proc.stderr.read().decode(errors="replace")
+    return status, wall, usage.ru_maxrss / 1024.0, out, err
+
+
+def ours(path, workdir, limit):
+    report = os.path.join(workdir, "report.json")
+    out = os.path.join(workdir, "out.ply")
+    if os.path.exists(report):
+        os.remove(report)
+    status, wall, rss, _, err = run_child([CAPMESH, "--quiet", "remesh", path, "-o", out, "--faces", str(FACES), "--report", report], limit)
+    row = {"status": status, "wall_seconds": wall, "peak_rss_mib": rss}
+    if status != 0:
+        row["error"] = err.strip().splitlines()[-1] if err.strip() else str(status)
+        return row
+    with open(report) as f:
+        r = json.load(f)
+    p = r["parameterization"]
+    row.update(
+        vertices=p["n_vertices"],
+        faces_in=p["n_faces"],
+        kind=p["kind"],
+        read=r["read_seconds"],
+        flatten=p["flatten_seconds"],
+        transport=p["transport_seconds"],
+        regularise=p["regularise_seconds"],
+        refine=p["refine_seconds"],
+        param=p["seconds"],
+        pullback=r["pullback_seconds"],
+        equalize=r["equalize_seconds"],
+        metrics=r["metrics_seconds"],
+        write=r["write_seconds"],
+        newton_iterations=p["newton_iterations"],
+        transport_solves=p["transport_solves"],
+        mean_abs_area_distortion=p["area_distortion"]["mean_abs"],
+        d_face_relative=r["d_face_relative"],
+        faces_out=r["faces"],
+    )
+    # Parameterization plus remeshing, without the quality metrics and the file I/O.
+    row["param_remesh"] = row["param"] + row["pullback"] + row["equalize"]
+    return row
+
+
+def meshlab(path, limit):
+    if not os.path.exists(MESHLAB_PY):
+        return {"status": "not run (no benchmarks/.venv)"}
+    status, wall, rss, out, err = run_child([MESHLAB_PY, "-c", MESHLAB_SCRIPT, path, str(FACES)], limit)
+    row = {"status": status, "wall_seconds": wall, "peak_rss_mib": rss}
+    if status == 0:
+        row.update(json.loads(out.strip().splitlines()[-1]))
+    else:
+        row["error"] = err.strip().splitlines()[-1] if err.strip() else str(status)
+    return row
+
+
+def target_for(name):
+    for key, (seconds, gib) in TARGETS.items():
+        if name == key or name.endswith(" " + key):
+            return seconds, gib
+    return None, None
+
+
+def machine():
+    cpu = "unknown"
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    mem = "unknown"
+    try:
+        with open("/proc/meminfo") as f:
+            kb = int(f.readline().split()[1])
+            mem = f"{kb / 1024 / 1024:.1f} GiB"
+    except (OSError, ValueError, IndexError):
+        pass
+    rustc = subprocess.run(["rustc", "--version"], capture_output=True, text=True).stdout.strip()
+    return {"cpu": cpu, "cores": os.cpu_count(), "memory": mem, "os": platform.platform(), "rustc": rustc,
+            "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")}
+
+
+def fmt(x, digits=2):
+    return "-" if x is None else f"{x:.{digits}f}"
+
+
+def write_report(rows, info):
+    os.makedirs(RESULTS, exist_ok=True)
+    with open(os.path.join(RESULTS, "stage_bench.json"), "w") as f:
+        json.dump({"machine": info, "faces": FACES, "rows": rows}, f, indent=1)
+    lines = [
+        "# Stage times and peak memory of `capmesh remesh`",
+        "",
+        f"Machine: {info['cpu']}, {info['cores']} cores, {info['memory']}; {info['os']}; {info['rustc']}; {info['date']}.",
+        f"One run of `bash benchmarks/stage_bench.sh`: `capmesh remesh IN --faces {FACES}` per mesh, each in its own process;",
+        "MeshLab's isotropic explicit remeshing (pymeshlab 2025.7.post1, target edge of an equilateral",
+        f"mesh of {FACES} faces over the input's area, 10 iterations) on the same file in the same run.",
+        "Seconds per stage; `param+remesh` is the parameterization, pull-back and area equalization",
+        "(no quality metrics, no file I/O), compared with MeshLab's filter time (no I/O either).",
+        "Peak RSS is the whole process's. Targets (issue 7): hand under 2 s, 100k vertices under 5 s,",
+        "1M under 60 s and 4 GiB.",
+        "",
+        "| mesh | V | read | flatten | transport | regularise | refine | pull-back | equalize | metrics | param+remesh | peak RSS MiB | target met | MeshLab isotropic s | ours / MeshLab |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|",
+    ]
+    for r in rows:
+        o, m = r["ours"], r["meshlab"]
+        ml_s = m.get("seconds") if m.get("status") == 0 else None
+        if o.get("status") != 0:
+            lines.append(f"| {r['name']} | {r.get('vertices', '-')} | {o.get('status')}: {o.get('error', '')} after {o['wall_seconds']:.0f} s, peak {o['peak_rss_mib']:.0f} MiB |" + " |" * 12 + f" {fmt(ml_s)} | - |")
+            continue
+        t_s, t_gib = target_for(r["name"])
+        met = "-"
+        if t_s is not None:
+            ok = o["param_remesh"] <= t_s and (t_gib is None or o["peak_rss_mib"] <= t_gib * 1024)
+            met = ("yes" if ok else "no") + f" ({t_s:g} s" + (f", {t_gib:g} GiB)" if t_gib else ")")
+        ratio = f"{o['param_remesh'] / ml_s:.1f}" if ml_s else "-"
+        ml_cell = fmt(ml_s) if ml_s is not None else str(m.get("status"))
+        lines.append(
+            f"| {r['name']} | {o['vertices']} | {fmt(o['read'])} | {fmt(o['flatten'])} | {fmt(o['transport'])} | {fmt(o['regularise'])} | {fmt(o['refine'])} | "
+            f"{fmt(o['pullback'])} | {fmt(o['equalize'])} | {fmt(o['metrics'])} | {fmt(o['param_remesh'])} | {o['peak_rss_mib']:.0f} | {met} | {ml_cell} | {ratio} |"
+        )
+    lines.append("")
+    lines.append("Closed surfaces are mapped with the puncture at both ends of the principal axis, in parallel (`--puncture-end best`); their stage columns are the kept map's, `param+remesh` is wall time.")
+    with open(os.path.join(RESULTS, "stage_bench.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sizes", default="10k,100k,1m")
+    ap.add_argument("--skip-meshlab", action="store_true")
+    ap.add_argument("--skip-shared", action="store_true")
+    ap.add_argument("--limit", type=float, default=1200.0, help="seconds per case")
+    args = ap.parse_args()
+    sizes = [s for s in args.sizes.split(",") if s]
+    cases = []
+    if not args.skip_shared:
+        for f in sorted(os.listdir(DATA)):
+            if f.endswith(".obj.gz") and not f.startswith("bad_"):
+                cases.append((f[: -len(".obj.gz")], os.path.join(DATA, f)))
+    work = tempfile.mkdtemp(prefix="capmesh-bench-")
+    for s in sizes:
+        if s not in SIZES:
+            sys.exit(f"unknown size {s}: use {','.join(SIZES)}")
+        path = os.path.join(work, f"synthetic_open_{s}.ply")
+        subprocess.run([SYNTH, "open", str(SIZES[s]), path], check=True, stdout=subprocess.DEVNULL)
+        cases.append((f"synthetic open disk {s}", path))
+    # A closed synthetic surface at the 10k and 100k scales (icosphere subdivisions 5 and 7).
+    for s, sub in [("10k", 5), ("100k", 7)]:
+        if s in sizes:
+            path = os.path.join(work, f"synthetic_closed_{s}.ply")
+            subprocess.run([SYNTH, "closed", str(sub), path], check=True, stdout=subprocess.DEVNULL)
+            cases.append((f"synthetic closed ellipsoid {s}", path))
+    # gzip inputs are decompressed once for MeshLab (pymeshlab reads plain files).
+    rows = []
+    info = machine()
+    for name, path in cases:
+        plain = path
+        if path.endswith(".gz"):
+            import gzip
+            plain = os.path.join(work, os.path.basename(path)[:-3])
+            with gzip.open(path, "rb") as src, open(plain, "wb") as dst:
+                dst.write(src.read())
+        print(f"{name}: capmesh ...", flush=True)
+        o = ours(plain, work, args.limit)
+        m = {"status": "skipped"} if args.skip_meshlab else meshlab(plain, args.limit)
+        row = {"name": name, "vertices": o.get("vertices"), "ours": o, "meshlab": m}
+        rows.append(row)
+        print(f"  ours: {o.get('status')} param+remesh {fmt(o.get('param_remesh'))} s, wall {o['wall_seconds']:.1f} s, peak {o['peak_rss_mib']:.0f} MiB"
+              f" | MeshLab isotropic: {m.get('status')} {fmt(m.get('seconds'))} s", flush=True)
+        write_report(rows, info)
+    print(f"wrote {os.path.join(RESULTS, 'stage_bench.md')}")
+
+
+if __name__ == "__main__":
+    main()
