@@ -8,7 +8,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
-use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Conj, Mat, Par, Side};
 
 /// Errors of the sparse direct solvers.
@@ -47,7 +47,9 @@ pub enum SolveError {
 #[derive(Debug, Clone, Default)]
 pub struct TripletList {
     n: usize,
-    entries: Vec<Triplet<usize, usize, f64>>,
+    /// `(row, col, value)`; 32-bit indices keep the list at 16 bytes an entry (the transport
+    /// Hessian of a million-vertex mesh has some 20 million).
+    entries: Vec<(u32, u32, f64)>,
 }
 
 impl TripletList {
@@ -64,7 +66,9 @@ impl TripletList {
     /// Add `value` at `(row, col)`.
     #[inline]
     pub fn push(&mut self, row: usize, col: usize, value: f64) {
-        self.entries.push(Triplet::new(row, col, value));
+        // An index beyond u32 becomes u32::MAX, which `assemble` refuses as out of range.
+        let idx = |i: usize| u32::try_from(i).unwrap_or(u32::MAX);
+        self.entries.push((idx(row), idx(col), value));
     }
 
     /// Matrix dimension.
@@ -78,20 +82,21 @@ impl TripletList {
     pub fn assemble(&self, what: &'static str) -> Result<SparseColMat<usize, f64>, SolveError> {
         let n = self.n;
         let mut count = vec![0usize; n + 1];
-        for t in &self.entries {
-            if t.row >= n || t.col >= n {
-                return Err(SolveError::Backend { what, message: format!("entry ({}, {}) outside a {n} x {n} matrix", t.row, t.col) });
+        for &(row, col, _) in &self.entries {
+            let (row, col) = (row as usize, col as usize);
+            if row >= n || col >= n {
+                return Err(SolveError::Backend { what, message: format!("entry ({row}, {col}) outside a {n} x {n} matrix") });
             }
-            count[t.col + 1] += 1;
+            count[col + 1] += 1;
         }
         for c in 0..n {
             count[c + 1] += count[c];
         }
         let mut next = count.clone();
-        let mut bucket = vec![(0usize, 0.0f64); self.entries.len()];
-        for t in &self.entries {
-            bucket[next[t.col]] = (t.row, t.val);
-            next[t.col] += 1;
+        let mut bucket = vec![(0u32, 0.0f64); self.entries.len()];
+        for &(row, col, val) in &self.entries {
+            bucket[next[col as usize]] = (row, val);
+            next[col as usize] += 1;
         }
         let mut col_ptr = Vec::with_capacity(n + 1);
         let mut row_idx = Vec::with_capacity(self.entries.len());
@@ -101,6 +106,7 @@ impl TripletList {
             let column = &mut bucket[count[c]..count[c + 1]];
             column.sort_unstable_by_key(|e| e.0);
             for &(r, v) in column.iter() {
+                let r = r as usize;
                 if row_idx.len() > col_ptr[c] && row_idx.last() == Some(&r) {
                     *values.last_mut().expect("values parallel to rows") += v;
                 } else {
@@ -110,6 +116,9 @@ impl TripletList {
             }
             col_ptr.push(row_idx.len());
         }
+        // Capacity was for every entry; duplicates made the matrix smaller.
+        row_idx.shrink_to_fit();
+        values.shrink_to_fit();
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         Ok(SparseColMat::new(symbolic, values))
     }
