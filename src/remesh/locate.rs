@@ -1,7 +1,11 @@
-//! Point location in a planar triangulation with a uniform grid of triangle bounding boxes.
-//! A query outside every triangle (the cap grid's boundary lies on the circle, the mapped
-//! mesh's boundary is a polygon inscribed in it) goes to the nearest point of the nearest
-//! triangle, so the pull-back is robust at the boundary.
+//! Point location in a planar triangulation with a bounding-volume hierarchy of the
+//! triangles. A query outside every triangle (the cap grid's boundary lies on the circle, the
+//! mapped mesh's boundary is a polygon inscribed in it) goes to the nearest point of the
+//! nearest triangle, so the pull-back is robust at the boundary.
+//!
+//! The planar image of a cap map is far from uniform (a closed surface mapped to `Z*` near -1
+//! packs most triangles near the centre of a disk of radius 20), so a uniform grid put
+//! thousands of triangles in a cell; the hierarchy splits at the median and adapts.
 
 use crate::mesh::geometry::signed_area_2d;
 
@@ -14,50 +18,79 @@ pub struct Location {
     pub bary: [f64; 3],
 }
 
-/// Grid over the triangles of a planar mesh.
+/// Triangles per leaf at most.
+const LEAF: usize = 8;
+
+/// A node: its box, and either two children (`count == 0`, children at `first` and
+/// `first + 1`) or `count` triangles `order[first..first + count]`.
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    lo: [f64; 2],
+    hi: [f64; 2],
+    first: u32,
+    count: u32,
+}
+
+/// Bounding-volume hierarchy over the triangles of a planar mesh.
 pub struct Locator<'a> {
     points: &'a [[f64; 2]],
     faces: &'a [[u32; 3]],
-    lo: [f64; 2],
-    cell: f64,
-    nx: usize,
-    ny: usize,
-    cells: Vec<Vec<u32>>,
+    nodes: Vec<Node>,
+    order: Vec<u32>,
 }
 
 impl<'a> Locator<'a> {
-    /// Build the grid (about two triangles per cell).
+    /// Build the hierarchy (median splits along the longer side of the centroids' box).
     pub fn new(points: &'a [[f64; 2]], faces: &'a [[u32; 3]]) -> Self {
-        let mut lo = [f64::INFINITY; 2];
-        let mut hi = [f64::NEG_INFINITY; 2];
-        for p in points {
-            for k in 0..2 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        let w = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-300);
-        let n = ((faces.len() as f64 / 2.0).sqrt().ceil() as usize).clamp(1, 4096);
-        let cell = w / n as f64 * (1.0 + 1e-9);
-        let (nx, ny) = (n, n);
-        let mut cells = vec![Vec::new(); nx * ny];
-        for (f, t) in faces.iter().enumerate() {
-            let q = t.map(|v| points[v as usize]);
-            let (x0, x1) = (q[0][0].min(q[1][0]).min(q[2][0]), q[0][0].max(q[1][0]).max(q[2][0]));
-            let (y0, y1) = (q[0][1].min(q[1][1]).min(q[2][1]), q[0][1].max(q[1][1]).max(q[2][1]));
-            let (i0, i1) = (Self::idx(x0, lo[0], cell, nx), Self::idx(x1, lo[0], cell, nx));
-            let (j0, j1) = (Self::idx(y0, lo[1], cell, ny), Self::idx(y1, lo[1], cell, ny));
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    cells[j * nx + i].push(f as u32);
+        let boxes: Vec<([f64; 2], [f64; 2])> = faces
+            .iter()
+            .map(|t| {
+                let q = t.map(|v| points[v as usize]);
+                let lo = [q[0][0].min(q[1][0]).min(q[2][0]), q[0][1].min(q[1][1]).min(q[2][1])];
+                let hi = [q[0][0].max(q[1][0]).max(q[2][0]), q[0][1].max(q[1][1]).max(q[2][1])];
+                (lo, hi)
+            })
+            .collect();
+        let mut order: Vec<u32> = (0..faces.len() as u32).collect();
+        let mut nodes = vec![Node { lo: [0.0; 2], hi: [0.0; 2], first: 0, count: 0 }];
+        // (node, start, end) still to build.
+        let mut todo = vec![(0usize, 0usize, order.len())];
+        while let Some((node, start, end)) = todo.pop() {
+            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+            let (mut clo, mut chi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+            for &f in &order[start..end] {
+                let (a, b) = boxes[f as usize];
+                for k in 0..2 {
+                    lo[k] = lo[k].min(a[k]);
+                    hi[k] = hi[k].max(b[k]);
+                    let c = 0.5 * (a[k] + b[k]);
+                    clo[k] = clo[k].min(c);
+                    chi[k] = chi[k].max(c);
                 }
             }
+            nodes[node].lo = lo;
+            nodes[node].hi = hi;
+            let axis = if chi[0] - clo[0] >= chi[1] - clo[1] { 0 } else { 1 };
+            if end - start <= LEAF || !(chi[axis] > clo[axis]) {
+                nodes[node].first = start as u32;
+                nodes[node].count = (end - start) as u32;
+                continue;
+            }
+            let mid = start + (end - start) / 2;
+            let centre = |f: &u32| {
+                let (a, b) = boxes[*f as usize];
+                a[axis] + b[axis]
+            };
+            order[start..end].select_nth_unstable_by(mid - start, |x, y| centre(x).total_cmp(&centre(y)));
+            let left = nodes.len();
+            nodes.push(Node { lo: [0.0; 2], hi: [0.0; 2], first: 0, count: 0 });
+            nodes.push(Node { lo: [0.0; 2], hi: [0.0; 2], first: 0, count: 0 });
+            nodes[node].first = left as u32;
+            nodes[node].count = 0;
+            todo.push((left, start, mid));
+            todo.push((left + 1, mid, end));
         }
-        Self { points, faces, lo, cell, nx, ny, cells }
-    }
-
-    fn idx(x: f64, lo: f64, cell: f64, n: usize) -> usize {
-        (((x - lo) / cell).floor().max(0.0) as usize).min(n - 1)
+        Self { points, faces, nodes, order }
     }
 
     fn barycentric(&self, f: usize, p: [f64; 2]) -> [f64; 3] {
@@ -70,40 +103,66 @@ impl<'a> Locator<'a> {
     }
 
     /// Locate `p`: a containing triangle if any, else the nearest point of the nearest
-    /// triangle among growing rings of grid cells.
+    /// triangle. `None` only for an empty mesh or a non-finite `p`.
     pub fn locate(&self, p: [f64; 2]) -> Option<Location> {
-        let (ci, cj) = (Self::idx(p[0], self.lo[0], self.cell, self.nx), Self::idx(p[1], self.lo[1], self.cell, self.ny));
-        let mut best: Option<(f64, Location)> = None;
-        let max_ring = self.nx.max(self.ny);
-        for ring in 0..=max_ring {
-            let (i0, i1) = (ci.saturating_sub(ring), (ci + ring).min(self.nx - 1));
-            let (j0, j1) = (cj.saturating_sub(ring), (cj + ring).min(self.ny - 1));
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    if ring > 0 && i != i0 && i != i1 && j != j0 && j != j1 {
-                        continue;
-                    }
-                    for &f in &self.cells[j * self.nx + i] {
-                        let bary = self.barycentric(f as usize, p);
-                        if bary.iter().all(|&b| b >= -1e-12) {
-                            let s: f64 = bary.iter().map(|b| b.max(0.0)).sum();
-                            return Some(Location { face: f as usize, bary: bary.map(|b| b.max(0.0) / s) });
-                        }
-                        let (d, loc) = self.nearest_in(f as usize, p);
-                        if best.as_ref().map_or(true, |(bd, _)| d < *bd) {
-                            best = Some((d, loc));
-                        }
-                    }
+        if self.faces.is_empty() || !(p[0].is_finite() && p[1].is_finite()) {
+            return None;
+        }
+        // Containing triangle: visit every node whose box holds p (with a margin for points
+        // on an edge shared by two boxes).
+        let mut stack = vec![0usize];
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n];
+            let margin = 1e-12 * (node.hi[0] - node.lo[0]).max(node.hi[1] - node.lo[1]);
+            if p[0] < node.lo[0] - margin || p[0] > node.hi[0] + margin || p[1] < node.lo[1] - margin || p[1] > node.hi[1] + margin {
+                continue;
+            }
+            if node.count == 0 {
+                stack.push(node.first as usize);
+                stack.push(node.first as usize + 1);
+                continue;
+            }
+            for &f in &self.order[node.first as usize..(node.first + node.count) as usize] {
+                let bary = self.barycentric(f as usize, p);
+                if bary.iter().all(|&b| b >= -1e-12) {
+                    let s: f64 = bary.iter().map(|b| b.max(0.0)).sum();
+                    return Some(Location { face: f as usize, bary: bary.map(|b| b.max(0.0) / s) });
                 }
             }
-            // Once something was found, one more ring guarantees the nearest.
-            if let Some((d, loc)) = best {
-                if d <= (ring as f64) * self.cell {
-                    return Some(loc);
+        }
+        // Outside every triangle: branch and bound on the distance to the boxes.
+        let mut best: Option<(f64, Location)> = None;
+        let mut stack = vec![0usize];
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n];
+            if best.as_ref().is_some_and(|(d, _)| box_distance(node.lo, node.hi, p) >= *d) {
+                continue;
+            }
+            if node.count == 0 {
+                let (a, b) = (node.first as usize, node.first as usize + 1);
+                let (da, db) = (self.box_distance_of(a, p), self.box_distance_of(b, p));
+                // Nearer child last, so it is searched first.
+                if da < db {
+                    stack.push(b);
+                    stack.push(a);
+                } else {
+                    stack.push(a);
+                    stack.push(b);
+                }
+                continue;
+            }
+            for &f in &self.order[node.first as usize..(node.first + node.count) as usize] {
+                let (d, loc) = self.nearest_in(f as usize, p);
+                if best.as_ref().map_or(true, |(bd, _)| d < *bd) {
+                    best = Some((d, loc));
                 }
             }
         }
         best.map(|(_, l)| l)
+    }
+
+    fn box_distance_of(&self, n: usize, p: [f64; 2]) -> f64 {
+        box_distance(self.nodes[n].lo, self.nodes[n].hi, p)
     }
 
     /// Distance from `p` to triangle `f` and the barycentric coordinates of the nearest point.
@@ -125,5 +184,53 @@ impl<'a> Locator<'a> {
             }
         }
         (best.0, Location { face: f, bary: best.1 })
+    }
+}
+
+/// Distance from `p` to the box `[lo, hi]` (0 inside).
+fn box_distance(lo: [f64; 2], hi: [f64; 2], p: [f64; 2]) -> f64 {
+    let dx = (lo[0] - p[0]).max(0.0).max(p[0] - hi[0]);
+    let dy = (lo[1] - p[1]).max(0.0).max(p[1] - hi[1]);
+    (dx * dx + dy * dy).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cap::stereographic;
+    use crate::mesh::shapes::{spherical_cap, spherical_cap_sectors};
+
+    /// Against brute force on a very non-uniform planar mesh (a cap down to Z* = -0.99 seen
+    /// through the stereographic projection: radius about 14, most triangles near the centre):
+    /// inside points find a containing triangle, outside points the nearest distance.
+    #[test]
+    fn matches_brute_force_on_a_non_uniform_mesh() {
+        let cap = spherical_cap(-0.99, 40, spherical_cap_sectors(-0.99, 40));
+        let plane: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
+        let locator = Locator::new(&plane, &cap.faces);
+        let mut state = 3u64;
+        let mut rand = || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let rim = plane.iter().map(|p| (p[0] * p[0] + p[1] * p[1]).sqrt()).fold(0.0, f64::max);
+        for i in 0..3000 {
+            // Radii spread on a log scale from the centre to twice the rim.
+            let r = rim * 2.0 * (1e-4f64).powf(rand()) * if i % 10 == 0 { 1.0 } else { 0.5 };
+            let t = 2.0 * std::f64::consts::PI * rand();
+            let p = [r * t.cos(), r * t.sin()];
+            let loc = locator.locate(p).expect("non-empty mesh");
+            let brute = (0..cap.faces.len()).map(|f| locator.nearest_in(f, p).0).fold(f64::INFINITY, f64::min);
+            let contained = (0..cap.faces.len()).any(|f| locator.barycentric(f, p).iter().all(|&b| b >= -1e-12));
+            let q = cap.faces[loc.face].map(|v| plane[v as usize]);
+            let x = [0, 1].map(|k| loc.bary[0] * q[0][k] + loc.bary[1] * q[1][k] + loc.bary[2] * q[2][k]);
+            let d = ((x[0] - p[0]).powi(2) + (x[1] - p[1]).powi(2)).sqrt();
+            if contained {
+                assert!(d <= 1e-9 * (1.0 + r), "point {p:?} inside the mesh located {d} away");
+            } else {
+                assert!((d - brute).abs() <= 1e-9 * (1.0 + brute), "point {p:?}: nearest {brute}, located {d}");
+            }
+            assert!((loc.bary.iter().sum::<f64>() - 1.0).abs() < 1e-12 && loc.bary.iter().all(|&b| b >= 0.0));
+        }
     }
 }

@@ -181,6 +181,24 @@ pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(
     std::fs::write(path, text + "\n").map_err(|e| format!("cannot write report {}: {e}", path.display()))
 }
 
+/// Mean |d_area| above which the map is reported as poor on stderr (the bundled meshes map
+/// at 0.008-0.13; a failed fold repair gives 0.4 and more).
+const POOR_AREA_DISTORTION: f64 = 0.3;
+
+/// Say on stderr when a map is fold-free but far from area preserving, rather than let a poor
+/// result pass silently.
+fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
+    if r.domain == "adaptive" && r.area_distortion.mean_abs > POOR_AREA_DISTORTION {
+        eprintln!(
+            "warning: {}: mean |d_area| = {:.3} is far from area preserving (fold repair moved a vertex by {:.0}% of the disk radius); \
+             try --puncture-end bottom or top, another --smoothing or --lambda, and check the report's untangle and smoothing_trials",
+            input.display(),
+            r.area_distortion.mean_abs,
+            100.0 * r.untangle.max_displacement
+        );
+    }
+}
+
 fn print_quality(q: &capmesh::metrics::RemeshMetrics) {
     println!("faces                      {}", q.faces);
     println!("d_face                     {:.6e}", q.d_face);
@@ -213,6 +231,7 @@ fn run(cli: Cli) -> Result<(), String> {
             io::write_mesh(&output, &out).map_err(|e| e.to_string())?;
             let write_seconds = t_write.elapsed().as_secs_f64();
             println!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
+            warn_if_poor(&input, &rep.param);
             print_quality(&rep.quality);
             if let Some(path) = report {
                 #[derive(serde::Serialize)]
@@ -326,6 +345,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 r.flipped_faces,
                 r.seconds
             );
+            warn_if_poor(&input, r);
             if let Some(path) = report {
                 write_json(&path, r)?;
             }
