@@ -2,6 +2,7 @@
 //! (paper Sec. 3.1.2-3.1.3 and 3.2).
 
 pub mod area_refine;
+pub mod boundary_polygon;
 pub mod brent;
 pub mod domain;
 pub mod kernel_untangle;

@@ -11,6 +11,7 @@
 //! result is an embedding (Tutte 1963, Floater 2003), and where the transport map was already
 //! valid it changes only near the folds.
 
+use super::boundary_polygon::{fit_into_boundary_polygon, PolygonFit};
 use super::kernel_untangle::kernel_untangle;
 use crate::linalg::{LuSolver, TripletList};
 use crate::mesh::geometry::folded_faces;
@@ -20,6 +21,8 @@ use crate::mesh::geometry::folded_faces;
 pub struct UntangleReport {
     /// Folded faces before the repair.
     pub folded_before: usize,
+    /// Vertices moved into the boundary polygon first (see [`super::boundary_polygon`]).
+    pub fitted_into_polygon: usize,
     /// Single-vertex moves into one-ring kernels (the first, local stage).
     pub kernel_moves: usize,
     /// Vertices whose position was not a positive combination of their neighbours (they got
@@ -85,7 +88,9 @@ fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
 /// Unfold `pos` in place if any face is folded. `fixed[v]` marks vertices that must not move
 /// (the boundary, on the circle of radius `radius`).
 ///
-/// First single vertices move into the kernels of their rings ([`kernel_untangle`]); folds
+/// Vertices outside the polygon of the fixed ones are first moved into it
+/// ([`fit_into_boundary_polygon`]): no fold-free map has them there. Then single vertices
+/// move into the kernels of their rings ([`kernel_untangle`]); folds
 /// that this leaves are handled by the convex-combination solve, local first: only vertices within `k` rings of a folded
 /// face move (the rest act as its boundary), with `k = 2, 4, 8, ...` until no fold is left;
 /// the last resort is the whole mesh with the fixed boundary. The attempt with the fewest
@@ -100,6 +105,9 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
     let n = pos.len();
     let rings = ordered_rings(n, faces);
     let start = pos.to_vec();
+    if let PolygonFit::Moved(m) = fit_into_boundary_polygon(pos, fixed, radius) {
+        report.fitted_into_polygon = m;
+    }
     report.kernel_moves = kernel_untangle(pos, faces, &rings, fixed);
     let folded = folded_faces(pos, faces);
     if folded.is_empty() {
