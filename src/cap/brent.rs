@@ -3,7 +3,20 @@
 
 /// Minimise `f` on `[a, b]` to absolute tolerance `xtol`. `f` may fail; the first error
 /// stops the search. Returns the best point and value seen.
-pub fn minimize<E>(mut f: impl FnMut(f64) -> Result<f64, E>, a: f64, b: f64, xtol: f64, max_evals: usize) -> Result<(f64, f64), E> {
+pub fn minimize<E>(f: impl FnMut(f64) -> Result<f64, E>, a: f64, b: f64, xtol: f64, max_evals: usize) -> Result<(f64, f64), E> {
+    minimize_with_tolerance(f, a, b, |_| xtol, max_evals)
+}
+
+/// [`minimize`] with a tolerance that depends on the point: the search stops when the
+/// bracket around the best point `x` is within `xtol(x)`. A search over a transformed
+/// variable uses it to keep its tolerance in the original one.
+pub fn minimize_with_tolerance<E>(
+    mut f: impl FnMut(f64) -> Result<f64, E>,
+    a: f64,
+    b: f64,
+    xtol: impl Fn(f64) -> f64,
+    max_evals: usize,
+) -> Result<(f64, f64), E> {
     let golden = 0.5 * (3.0 - 5f64.sqrt());
     let (mut a, mut b) = (a.min(b), a.max(b));
     let mut x = a + golden * (b - a);
@@ -14,7 +27,7 @@ pub fn minimize<E>(mut f: impl FnMut(f64) -> Result<f64, E>, a: f64, b: f64, xto
     let mut evals = 1;
     while evals < max_evals {
         let xm = 0.5 * (a + b);
-        let tol1 = 1e-10 * x.abs() + xtol / 3.0;
+        let tol1 = 1e-10 * x.abs() + xtol(x) / 3.0;
         let tol2 = 2.0 * tol1;
         if (x - xm).abs() <= tol2 - 0.5 * (b - a) {
             break;
@@ -94,5 +107,19 @@ mod tests {
         // Minimum at the bound.
         let (x, _) = minimize::<()>(|x| Ok(x), -1.0, 1.0, 1e-4, 60).unwrap();
         assert!(x < -0.999);
+    }
+
+    #[test]
+    fn a_looser_tolerance_away_from_the_origin_stops_sooner_at_the_same_place() {
+        // f(x) = x on [-3, 3]: the minimum is at the bound -3.
+        let count = |tol: &dyn Fn(f64) -> f64| {
+            let mut n = 0;
+            let (x, _) = minimize_with_tolerance::<()>(|x| { n += 1; Ok(x) }, -3.0, 3.0, tol, 60).unwrap();
+            (x, n)
+        };
+        let (x_fixed, n_fixed) = count(&|_| 1e-3);
+        let (x_loose, n_loose) = count(&|x: f64| 1e-3 * x.cosh().powi(2));
+        assert!(x_fixed < -3.0 + 2e-3 && x_loose < -3.0 + 1e-3 * 3f64.cosh().powi(2), "{x_fixed} {x_loose}");
+        assert!(n_loose < n_fixed, "{n_loose} evaluations, {n_fixed} with the fixed tolerance");
     }
 }

@@ -4,7 +4,8 @@
 //! Open disks (Sec. 3.1): disk conformal map `g`, then for each radius `r` the transport map
 //! `h_r` on the disk of radius `r` with the stereographic density; `r*` minimises the
 //! area-normalised mean of `|mu|^2` of `(h_r o r g)^-1` (Eq. 12) by Brent's method over `Z*`
-//! in `[-0.995, 0.995]`; then the inverse stereographic projection.
+//! in `[-0.995, 0.995]` (run in the variable `atanh(Z*)`, tolerance on `Z*`); then the inverse
+//! stereographic projection.
 
 use super::area_refine::{refine_areas, AreaRefineReport};
 use super::brent;
@@ -361,7 +362,12 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
             let mut evals = 0usize;
             let max_evals = options.max_search_evaluations;
             let search_tolerance = options.search_tolerance.max(options.transport.tolerance);
-            let mut objective = |z: f64| -> Result<f64, Error> {
+            // The search runs over w = atanh(Z*) (= -ln r): golden steps towards a bound then
+            // shrink the distance to it geometrically in r rather than in Z*, while the
+            // tolerance stays `z_tolerance` on Z* (dZ*/dw = 1 - Z*^2). Closed surfaces, whose
+            // optimum is at the bound, need about half the solves.
+            let mut objective = |w: f64| -> Result<f64, Error> {
+                let z = w.tanh();
                 let r = radius_of_z_star(z);
                 evals += 1;
                 progress::check(progress, Stage::RadiusSearch, evals as f64 / max_evals as f64, &format!("r = {r:.4}, Z* = {z:.4}"))?;
@@ -378,7 +384,8 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
                 Ok(e)
             };
             let (z_lo, z_hi) = (z_star_of_radius(MAX_RADIUS), z_star_of_radius(MIN_RADIUS));
-            brent::minimize(&mut objective, z_lo, z_hi, options.z_tolerance, max_evals)?;
+            let z_tolerance = options.z_tolerance;
+            brent::minimize_with_tolerance(&mut objective, z_lo.atanh(), z_hi.atanh(), |w: f64| z_tolerance * w.cosh().powi(2), max_evals)?;
             let (r, _, map) = best.ok_or_else(|| Error::Unsupported("radius search made no evaluation".into()))?;
             if search_tolerance > options.transport.tolerance {
                 (r, transport.map_at(r, progress)?)
