@@ -68,6 +68,28 @@ fn param_refuses_to_overwrite_its_input() {
     assert_eq!(std::fs::read(&copy).unwrap(), before);
 }
 
+/// The same file under another name is still the input: a symbolic link as the output, a
+/// hard link as the report.
+#[cfg(unix)]
+#[test]
+fn remesh_refuses_links_to_its_input() {
+    let dir = temp_dir("links");
+    let input = dir.join("helmet.obj.gz");
+    std::fs::copy(data("open_meg_helmet_babysquid_mne.obj.gz"), &input).unwrap();
+    let before = std::fs::read(&input).unwrap();
+    let soft = dir.join("soft.obj.gz");
+    let hard = dir.join("hard.json");
+    std::os::unix::fs::symlink(&input, &soft).unwrap();
+    std::fs::hard_link(&input, &hard).unwrap();
+    let as_output = capmesh().args(["--quiet", "remesh"]).arg(&input).arg("-o").arg(&soft).output().unwrap();
+    assert!(!as_output.status.success());
+    assert!(String::from_utf8_lossy(&as_output.stderr).contains("refusing to overwrite"), "{}", String::from_utf8_lossy(&as_output.stderr));
+    let as_report = capmesh().args(["--quiet", "remesh"]).arg(&input).arg("-o").arg(dir.join("out.obj")).arg("--report").arg(&hard).output().unwrap();
+    assert!(!as_report.status.success());
+    assert!(String::from_utf8_lossy(&as_report.stderr).contains("refusing to overwrite"));
+    assert_eq!(std::fs::read(&input).unwrap(), before);
+}
+
 #[test]
 fn check_describes_an_open_disk() {
     let out = capmesh().arg("check").arg(data("open_lv_endo_rabbit_chaste.obj.gz")).output().unwrap();

@@ -318,7 +318,10 @@ impl<'d> OtSolver<'d> {
     /// union of the patterns seen soon stops growing. It restarts from the current edges when
     /// it holds 20% more than them, so the extra fill stays small. (Keeping the AMD ordering
     /// of an earlier pattern and redoing only the elimination tree was measured and is no
-    /// good: on the hand the factor grows from 2.6M to 4M-16M entries after a few flips.)
+    /// good: on the hand the factor grows from 2.6M to 4M-16M entries after a few flips.
+    /// Nor is skipping factorizations by conjugate gradients preconditioned with the last
+    /// factor: it needs 8-20 iterations per step at 8 ms each, no cheaper than factoring,
+    /// and its inexact steps tripled the Newton iterations on the 48k brain.)
     fn update_pattern(&mut self, cells: &CellIntegrals) {
         let mut current: Vec<u64> = cells.edges.iter().filter(|e| e.0 > 0 && e.1 > 0).map(|&(i, j, _)| ((i as u64) << 32) | j as u64).collect();
         current.sort_unstable();
