@@ -141,7 +141,13 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
         pos.copy_from_slice(&original);
         let movable: Vec<bool> = (0..n).map(|v| region[v] && !fixed[v] && rings[v].is_some()).collect();
         let uniform = convex_combination_solve(pos, &rings, &movable);
-        let left = folded_faces(pos, faces).len();
+        // The solve leaves the region's tangles untied but can fold faces at its rim, where the
+        // region's outline is not convex; single-vertex kernel moves usually fix those.
+        let mut left = folded_faces(pos, faces).len();
+        if left > 0 {
+            report.kernel_moves += kernel_untangle(pos, faces, &rings, fixed);
+            left = folded_faces(pos, faces).len();
+        }
         if best.as_ref().map_or(true, |(b, ..)| left < *b) {
             best = Some((left, pos.to_vec(), uniform));
         }
