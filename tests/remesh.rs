@@ -34,6 +34,10 @@ fn check(name: &str, max_relative_to_input: f64) {
         q.d_face_relative,
         input_rel
     );
+    // The area equalization ran and helped (it once stopped after one sweep on closed
+    // surfaces, its planar orientation taken from the flat bottom's reversed faces).
+    let eq = &rep.area_equalization;
+    assert!(eq.sweeps > 1 && eq.mean_abs_after < 0.9 * eq.mean_abs_before, "{name}: equalization {eq:?}");
     // Pulled-back vertices lie on the original surface.
     assert!(q.d_surface_vertex_relative < 1e-9, "{name}: {}", q.d_surface_vertex_relative);
     assert!(q.d_surface_sampled_relative < 0.01, "{name}: {}", q.d_surface_sampled_relative);

@@ -58,7 +58,16 @@ pub fn refine_towards(
     let n = plane.len();
     let source = target;
     let source_total: f64 = source.iter().sum();
-    let orientation = if faces.iter().map(|f| signed_area_2d(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize])).sum::<f64>() < 0.0 { -1.0 } else { 1.0 };
+    // The orientation the moving faces keep: that of most faces with a free vertex. Faces of
+    // fixed vertices only do not count: the flat bottom of a closed surface's cap mesh
+    // projects onto the same planar disk as the cap, reversed, and an area sum over all faces
+    // came out with the wrong sign on some meshes (12k brain remesh: no vertex could move).
+    let free_signs = faces
+        .iter()
+        .filter(|f| f.iter().any(|&v| !fixed[v as usize]))
+        .map(|f| signed_area_2d(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize]).signum())
+        .sum::<f64>();
+    let orientation = if free_signs < 0.0 { -1.0 } else { 1.0 };
     let image_area = |lifted: &[[f64; 3]], f: &[u32; 3]| triangle_area(lifted[f[0] as usize], lifted[f[1] as usize], lifted[f[2] as usize]);
     let mut incident: Vec<Vec<usize>> = vec![Vec::new(); n];
     for (t, f) in faces.iter().enumerate() {

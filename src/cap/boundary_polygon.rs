@@ -18,7 +18,7 @@
 //! identity inside `rho0` and compresses radially by at most one half. With the stereographic
 //! density the annulus outside `rho0` carries little mass when `r` is large (the closed
 //! surfaces' optimum), so the added area distortion is small and the area refinement
-//! (Sec. [`super::area_refine`]) takes most of it back.
+//! ([`super::area_refine`]) takes most of it back.
 
 /// Vertices that [`fit_into_boundary_polygon`] moved, or why it did nothing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
