@@ -15,7 +15,8 @@
 //! `rho' = rho0 + (rho - rho0) (rho_poly(theta) - rho0) / (r - rho0)` for `rho > rho0`, where
 //! `rho_poly(theta)` is the polygon's radius in that direction and `rho0 = 2 rho_in - r` with
 //! `rho_in` the polygon's inradius: a homeomorphism of the disk onto the polygon that is the
-//! identity inside `rho0` and compresses radially by at most one half. With the stereographic
+//! identity inside `rho0` and compresses radially by at most one half (when `rho_in >= r / 2`,
+//! as for the four corners of a punctured quad; otherwise `rho0 = 0`). With the stereographic
 //! density the annulus outside `rho0` carries little mass when `r` is large (the closed
 //! surfaces' optimum), so the added area distortion is small and the area refinement
 //! ([`super::area_refine`]) takes most of it back.

@@ -4,8 +4,8 @@
 //! Open disks (Sec. 3.1): disk conformal map `g`, then for each radius `r` the transport map
 //! `h_r` on the disk of radius `r` with the stereographic density; `r*` minimises the
 //! area-normalised mean of `|mu|^2` of `(h_r o r g)^-1` (Eq. 12) by Brent's method over `Z*`
-//! in `[-0.995, 0.995]` (closed surfaces: run in the variable `atanh(Z*)`, tolerance on `Z*`); then the inverse
-//! stereographic projection.
+//! in `[-0.995, 0.995]` (closed surfaces: run in the variable `atanh(Z*)`, tolerance on
+//! `Z*`); then the inverse stereographic projection.
 
 use super::area_refine::{refine_areas, AreaRefineReport};
 use super::brent;

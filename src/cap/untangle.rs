@@ -23,7 +23,8 @@ pub struct UntangleReport {
     pub folded_before: usize,
     /// Vertices moved into the boundary polygon first (see [`super::boundary_polygon`]).
     pub fitted_into_polygon: usize,
-    /// Single-vertex moves into one-ring kernels (the first, local stage).
+    /// Single-vertex moves into one-ring kernels (the first, local stage, and after each
+    /// region solve, counted over all attempts).
     pub kernel_moves: usize,
     /// Vertices whose position was not a positive combination of their neighbours (they got
     /// uniform weights).
@@ -141,8 +142,9 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
         pos.copy_from_slice(&original);
         let movable: Vec<bool> = (0..n).map(|v| region[v] && !fixed[v] && rings[v].is_some()).collect();
         let uniform = convex_combination_solve(pos, &rings, &movable);
-        // The solve leaves the region's tangles untied but can fold faces at its rim, where the
-        // region's outline is not convex; single-vertex kernel moves usually fix those.
+        // The solve unties the region's tangles but can fold faces at its rim, where the
+        // region's outline is not convex; single-vertex kernel moves fix part of those, so
+        // fewer and smaller attempts are needed (hand: the last, whole-mesh one is skipped).
         let mut left = folded_faces(pos, faces).len();
         if left > 0 {
             report.kernel_moves += kernel_untangle(pos, faces, &rings, fixed);
