@@ -3,9 +3,9 @@
 //! `d m_i / d w_j = -int_{cell_i ∩ cell_j} sigma ds / (2 |y_i - y_j|)`
 //! (Kitagawa, Mérigot and Thibert 2019; the paper's Eq. 8 energy in weight form).
 //!
-//! Geometry traversal is apart from the integrand: [`cell_boundary`] walks the dual polygon of
-//! one site and clips it to the disk; [`integrate_cell`] hands each piece (a straight edge or
-//! an arc of the circle) to a [`RadialDensity`].
+//! Geometry traversal is apart from the integrand: [`dual_polygon`] walks the dual polygon of
+//! one site and [`clip_to_disk`] clips it to the disk; [`integrate_cell`] hands each piece (a
+//! straight edge or an arc of the circle) to a [`RadialDensity`].
 
 use super::density::RadialDensity;
 use super::triangulation::{RegularTriangulation, NONE};
