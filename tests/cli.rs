@@ -56,12 +56,18 @@ fn param_writes_cap_mesh_and_report() {
     }
 }
 
-#[test]
-fn param_refuses_to_overwrite_its_input() {
-    let dir = temp_dir("overwrite");
+/// A copy of the MEG helmet in `dir` to serve as an input that must stay untouched, and its
+/// bytes.
+fn helmet_copy(dir: &Path) -> (PathBuf, Vec<u8>) {
     let copy = dir.join("helmet.obj.gz");
     std::fs::copy(data("open_meg_helmet_babysquid_mne.obj.gz"), &copy).unwrap();
-    let before = std::fs::read(&copy).unwrap();
+    let bytes = std::fs::read(&copy).unwrap();
+    (copy, bytes)
+}
+
+#[test]
+fn param_refuses_to_overwrite_its_input() {
+    let (copy, before) = helmet_copy(&temp_dir("overwrite"));
     let out = capmesh().args(["param", "--quiet"]).arg(&copy).arg("-o").arg(&copy).output().unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("refusing to overwrite"));
@@ -74,9 +80,7 @@ fn param_refuses_to_overwrite_its_input() {
 #[test]
 fn remesh_refuses_links_to_its_input() {
     let dir = temp_dir("links");
-    let input = dir.join("helmet.obj.gz");
-    std::fs::copy(data("open_meg_helmet_babysquid_mne.obj.gz"), &input).unwrap();
-    let before = std::fs::read(&input).unwrap();
+    let (input, before) = helmet_copy(&dir);
     let soft = dir.join("soft.obj.gz");
     let hard = dir.join("hard.json");
     std::os::unix::fs::symlink(&input, &soft).unwrap();

@@ -21,6 +21,13 @@
 //! surfaces' optimum), so the added area distortion is small and the area refinement
 //! ([`super::area_refine`]) takes most of it back.
 
+use crate::mesh::geometry::signed_area_2d;
+
+/// `p x q`, the z component of the cross product.
+fn cross(p: [f64; 2], q: [f64; 2]) -> f64 {
+    p[0] * q[1] - p[1] * q[0]
+}
+
 /// Vertices that [`fit_into_boundary_polygon`] moved, or why it did nothing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PolygonFit {
@@ -72,7 +79,6 @@ impl BoundaryPolygon {
         let (a, b) = (self.corners[i], self.corners[(i + 1) % n]);
         let u = [theta.cos(), theta.sin()];
         let e = [b[0] - a[0], b[1] - a[1]];
-        let cross = |p: [f64; 2], q: [f64; 2]| p[0] * q[1] - p[1] * q[0];
         cross(e, a) / cross(e, u)
     }
 
@@ -83,7 +89,7 @@ impl BoundaryPolygon {
             .map(|i| {
                 let (a, b) = (self.corners[i], self.corners[(i + 1) % n]);
                 let e = [b[0] - a[0], b[1] - a[1]];
-                (a[0] * e[1] - a[1] * e[0]).abs() / (e[0] * e[0] + e[1] * e[1]).sqrt()
+                cross(a, e).abs() / (e[0] * e[0] + e[1] * e[1]).sqrt()
             })
             .fold(f64::INFINITY, f64::min)
     }
@@ -92,8 +98,7 @@ impl BoundaryPolygon {
     fn contains(&self, p: [f64; 2]) -> bool {
         let n = self.corners.len();
         (0..n).all(|i| {
-            let (a, b) = (self.corners[i], self.corners[(i + 1) % n]);
-            (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) > 0.0
+            signed_area_2d(self.corners[i], self.corners[(i + 1) % n], p) > 0.0
         })
     }
 }
