@@ -4,6 +4,7 @@
 pub mod area_refine;
 pub mod boundary_polygon;
 pub mod brent;
+pub mod coarse_level;
 pub mod domain;
 pub mod kernel_untangle;
 pub mod parameterize;

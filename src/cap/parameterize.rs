@@ -9,6 +9,7 @@
 
 use super::area_refine::{refine_areas, AreaRefineReport};
 use super::brent;
+use super::coarse_level::CoarseLevel;
 use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
 use super::planar_transport::{PlanarTransport, TransportMap};
 use super::regularize::{regularise, Smoothing, SmoothingTrial};
@@ -44,6 +45,11 @@ pub struct ParamOptions {
     /// search stops at `Z* = -0.991` instead of the bound and its mean `|d_area|` goes from
     /// 0.013 to 0.40. Default `1e-5`.
     pub search_tolerance: f64,
+    /// Largest number of transport sites of the radius search. A mesh with more than twice
+    /// as many vertices searches on a coarse level of about this many sites (see
+    /// [`super::coarse_level`]) and solves the full transport problem at `r*` only; 0 always
+    /// searches at full resolution (the paper's method). Default [`DEFAULT_SEARCH_SITES`].
+    pub search_sites: usize,
     /// Disk conformal map options.
     pub flatten: DiskConformalOptions,
     /// Initial map of open surfaces. Default [`OpenInitialMap::Composite`];
@@ -75,6 +81,7 @@ impl Default for ParamOptions {
             max_search_evaluations: 30,
             transport: OtOptions::default(),
             search_tolerance: 1e-5,
+            search_sites: DEFAULT_SEARCH_SITES,
             flatten: DiskConformalOptions::default(),
             closed: ClosedFlattenOptions::default(),
             smoothing: Smoothing::Auto,
@@ -101,6 +108,9 @@ impl ParamOptions {
 /// closed-surface recipe with `lambda = 0.5` keeps every shared open mesh at or below the
 /// paper's open-surface distortion (see README).
 pub const DEFAULT_OPEN_LAMBDA: f64 = 0.5;
+
+/// Transport sites of the radius search by default (see [`ParamOptions::search_sites`]).
+pub const DEFAULT_SEARCH_SITES: usize = 4000;
 
 /// Sweeps of the area refinement by default. On the shared closed meshes (1.8k to 48k
 /// vertices) the centroid map leaves a mean `|d_area|` of 0.2 to 0.5 after fold repair; 50
@@ -183,7 +193,8 @@ pub struct RadiusSample {
     pub z_star: f64,
     /// Area-normalised mean `|mu|^2`.
     pub energy: f64,
-    /// Newton iterations of that transport solve.
+    /// Newton iterations of that transport solve (on the coarse level when the search ran
+    /// there).
     pub newton_iterations: usize,
 }
 
@@ -220,12 +231,17 @@ pub struct ParamReport {
     pub untangle: UntangleReport,
     /// The face-level area refinement (see [`super::area_refine`]).
     pub area_refinement: AreaRefineReport,
-    /// Newton iterations over all transport solves.
+    /// Newton iterations over all full-resolution transport solves.
     pub newton_iterations: usize,
+    /// Sites of the coarse level the radius search ran on; `None` when it ran at full
+    /// resolution.
+    pub search_sites: Option<usize>,
+    /// Newton iterations of the coarse radius search.
+    pub coarse_newton_iterations: usize,
     /// Transport solves.
     pub transport_solves: usize,
-    /// Symbolic factorizations of the transport Newton matrices (the other iterations
-    /// reused one).
+    /// Symbolic factorizations of the transport Newton matrices, coarse search included
+    /// (the other iterations reused one).
     pub transport_symbolic_factorizations: usize,
     /// Radius search evaluations in order.
     pub radius_curve: Vec<RadiusSample>,
@@ -355,10 +371,18 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
     let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, density, options.transport.clone());
     let t_ot = Instant::now();
     let mut curve = Vec::new();
+    let (mut search_sites, mut coarse_newton_iterations, mut coarse_symbolic) = (None, 0, 0);
     let (radius, transported) = match options.domain {
         Domain::Disk => (1.0, transport.map_at(1.0, progress)?),
         Domain::Adaptive => {
-            let mut best: Option<(f64, f64, TransportMap)> = None;
+            let coarse = (options.search_sites > 0 && disk.len() > 2 * options.search_sites)
+                .then(|| CoarseLevel::build(&disk, &faces, &on_boundary, &target, options.search_sites))
+                .flatten();
+            let mut coarse_transport = coarse.as_ref().map(|c| PlanarTransport::new(&c.sites, &c.on_boundary, &c.masses, density, options.transport.clone()));
+            search_sites = coarse.as_ref().map(CoarseLevel::len);
+            // The best radius and energy, with its full-resolution map when the search ran
+            // at full resolution.
+            let mut best: Option<(f64, f64, Option<TransportMap>)> = None;
             let mut evals = 0usize;
             let max_evals = options.max_search_evaluations;
             let search_tolerance = options.search_tolerance.max(options.transport.tolerance);
@@ -377,13 +401,22 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
                 let r = radius_of_z_star(z);
                 evals += 1;
                 progress::check(progress, Stage::RadiusSearch, evals as f64 / max_evals as f64, &format!("r = {r:.4}, Z* = {z:.4}"))?;
-                let map = transport.map_at_tolerance(r, search_tolerance, progress)?;
-                let e = if kind == SurfaceKind::OpenDisk {
-                    conformal_energy(&work.vertices, &map.centroids, &faces)
-                } else {
-                    conformal_energy_surface_weighted(&work.vertices, &map.centroids, &faces)
+                let (centroids, iterations, map) = match (coarse.as_ref(), coarse_transport.as_mut()) {
+                    (Some(level), Some(ct)) => {
+                        let map = ct.map_at_tolerance(r, search_tolerance, progress)?;
+                        (level.prolong(&map.centroids), map.report.iterations, None)
+                    }
+                    _ => {
+                        let map = transport.map_at_tolerance(r, search_tolerance, progress)?;
+                        (map.centroids.clone(), map.report.iterations, Some(map))
+                    }
                 };
-                curve.push(RadiusSample { r, z_star: z, energy: e, newton_iterations: map.report.iterations });
+                let e = if kind == SurfaceKind::OpenDisk {
+                    conformal_energy(&work.vertices, &centroids, &faces)
+                } else {
+                    conformal_energy_surface_weighted(&work.vertices, &centroids, &faces)
+                };
+                curve.push(RadiusSample { r, z_star: z, energy: e, newton_iterations: iterations });
                 if best.as_ref().map_or(true, |b| e < b.1) {
                     best = Some((r, e, map));
                 }
@@ -396,11 +429,12 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
             } else {
                 brent::minimize(&mut objective, z_lo, z_hi, z_tolerance, max_evals)?;
             }
+            coarse_newton_iterations = coarse_transport.as_ref().map_or(0, |t| t.newton_iterations);
+            coarse_symbolic = coarse_transport.as_ref().map_or(0, |t| t.symbolic_factorizations);
             let (r, _, map) = best.ok_or_else(|| Error::Unsupported("radius search made no evaluation".into()))?;
-            if search_tolerance > options.transport.tolerance {
-                (r, transport.map_at(r, progress)?)
-            } else {
-                (r, map)
+            match map {
+                Some(map) if search_tolerance <= options.transport.tolerance => (r, map),
+                _ => (r, transport.map_at(r, progress)?),
             }
         }
         fixed => {
@@ -447,8 +481,10 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
         smoothing_kappa: kappa,
         smoothing_trials: trials,
         newton_iterations: transport.newton_iterations,
+        search_sites,
+        coarse_newton_iterations,
         transport_solves: transport.solves,
-        transport_symbolic_factorizations: transport.symbolic_factorizations,
+        transport_symbolic_factorizations: transport.symbolic_factorizations + coarse_symbolic,
         radius_curve: curve,
         flatten: flatten_report,
         puncture,

@@ -48,6 +48,20 @@ impl<'a> PlanarTransport<'a> {
         Self { disk_map, on_boundary, target, density, options, solver: None, newton_iterations: 0, solves: 0, symbolic_factorizations: 0 }
     }
 
+    fn solver_at(&mut self, r: f64) -> Result<&mut OtSolver<'a>, OmtError> {
+        Ok(match self.solver {
+            Some(ref mut s) => {
+                let scale = r / s.radius();
+                s.rescale(scale);
+                s
+            }
+            None => {
+                let sites: Vec<[f64; 2]> = self.disk_map.iter().map(|p| [r * p[0], r * p[1]]).collect();
+                self.solver.insert(OtSolver::new(&sites, r, self.density)?)
+            }
+        })
+    }
+
     /// Vertex positions of `h_r o r g` on the disk of radius `r` (cell centroids), the cell
     /// masses and the solver's report.
     pub fn map_at(&mut self, r: f64, progress: &dyn Progress) -> Result<TransportMap, OmtError> {
@@ -59,22 +73,13 @@ impl<'a> PlanarTransport<'a> {
     /// options' (the radius search needs less accuracy than the final map).
     pub fn map_at_tolerance(&mut self, r: f64, tolerance: f64, progress: &dyn Progress) -> Result<TransportMap, OmtError> {
         let options = OtOptions { tolerance, ..self.options.clone() };
-        let solver = match self.solver.as_mut() {
-            Some(s) => {
-                let scale = r / s.radius();
-                s.rescale(scale);
-                s
-            }
-            None => {
-                let sites: Vec<[f64; 2]> = self.disk_map.iter().map(|p| [r * p[0], r * p[1]]).collect();
-                self.solver.insert(OtSolver::new(&sites, r, self.density)?)
-            }
-        };
-        let (cells, report) = solver.solve(self.target, &options, progress)?;
+        let (target, on_boundary) = (self.target, self.on_boundary);
+        let solver = self.solver_at(r)?;
+        let (cells, report) = solver.solve(target, &options, progress)?;
+        let centroids = positions(&cells, solver.sites(), on_boundary, r);
         self.newton_iterations += report.iterations;
         self.symbolic_factorizations += report.symbolic_factorizations;
         self.solves += 1;
-        let centroids = positions(&cells, solver.sites(), self.on_boundary, r);
         Ok(TransportMap { centroids, masses: cells.mass, report })
     }
 }

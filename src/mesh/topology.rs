@@ -420,9 +420,13 @@ fn components(mesh: &TriMesh) -> (usize, usize) {
 /// Sorted, de-duplicated neighbours of every vertex (vertices joined by a face edge).
 /// Faces with out-of-range indices are ignored.
 pub fn vertex_neighbors(mesh: &TriMesh) -> Vec<Vec<u32>> {
-    let n = mesh.n_vertices();
+    neighbors_of_faces(mesh.n_vertices(), &mesh.faces)
+}
+
+/// [`vertex_neighbors`] of `n` vertices joined by the edges of `faces`.
+pub fn neighbors_of_faces(n: usize, faces: &[[u32; 3]]) -> Vec<Vec<u32>> {
     let mut count = vec![0usize; n];
-    for face in mesh.faces.iter().filter(|f| face_in_range(f, n)) {
+    for face in faces.iter().filter(|f| face_in_range(f, n)) {
         for k in 0..3 {
             let (a, b) = (face[k], face[(k + 1) % 3]);
             if a != b {
@@ -432,7 +436,7 @@ pub fn vertex_neighbors(mesh: &TriMesh) -> Vec<Vec<u32>> {
         }
     }
     let mut out: Vec<Vec<u32>> = count.iter().map(|&c| Vec::with_capacity(c)).collect();
-    for face in mesh.faces.iter().filter(|f| face_in_range(f, n)) {
+    for face in faces.iter().filter(|f| face_in_range(f, n)) {
         for k in 0..3 {
             let (a, b) = (face[k], face[(k + 1) % 3]);
             if a != b {

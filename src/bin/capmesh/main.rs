@@ -67,6 +67,11 @@ enum Command {
         /// the bottom (lower input Z) or at the top.
         #[arg(long, default_value = "best")]
         puncture_end: capmesh::cap::PunctureEnd,
+        /// Transport sites of the radius search: meshes with more than twice as many
+        /// vertices search on a coarse level this size and solve the full problem at r* only
+        /// (0: search at full resolution, the paper's method).
+        #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_SEARCH_SITES)]
+        search_sites: usize,
     },
     /// Remesh a surface through its adaptive cap: a uniform cap mesh of about N faces
     /// (default) or a latitude/longitude mesh, pulled back by the inverse map. Closed
@@ -316,7 +321,7 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             Ok(())
         }
-        Command::Param { input, output, domain, report, initial, lambda, open_lambda, smoothing, area_refinement, puncture_end } => {
+        Command::Param { input, output, domain, report, initial, lambda, open_lambda, smoothing, area_refinement, puncture_end, search_sites } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -330,6 +335,7 @@ fn run(cli: Cli) -> Result<(), String> {
             options.smoothing = smoothing;
             options.area_refinement = area_refinement;
             options.puncture_end = puncture_end;
+            options.search_sites = search_sites;
             let map = parameterize(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
             bar.finish();
             io::write_mesh(&output, &map.cap_mesh(&m)).map_err(|e| e.to_string())?;

@@ -1,0 +1,53 @@
+//! The radius search on a coarse level (cap::coarse_level) finds a cap as good as the search
+//! at full resolution, with a fraction of the full-resolution Newton iterations.
+
+use capmesh::cap::{parameterize, ParamOptions};
+use capmesh::io::read_mesh;
+use capmesh::progress::NoProgress;
+use std::path::PathBuf;
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
+}
+
+fn compare(name: &str, z_tolerance: f64) {
+    let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
+    let full_options = ParamOptions { search_sites: 0, ..ParamOptions::default() };
+    let full = parameterize(&mesh, &full_options, &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}")).report;
+    let coarse = parameterize(&mesh, &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}")).report;
+    eprintln!(
+        "{name}: full Z* {:.4} d_area {:.4} d_angle {:.4} newton {} {:.1}s | coarse ({:?} sites) Z* {:.4} d_area {:.4} d_angle {:.4} newton {} + {} coarse {:.1}s",
+        full.z_star.unwrap(),
+        full.area_distortion.mean_abs,
+        full.angle_distortion.mean_abs,
+        full.newton_iterations,
+        full.seconds,
+        coarse.search_sites,
+        coarse.z_star.unwrap(),
+        coarse.area_distortion.mean_abs,
+        coarse.angle_distortion.mean_abs,
+        coarse.newton_iterations,
+        coarse.coarse_newton_iterations,
+        coarse.seconds
+    );
+    assert_eq!(full.search_sites, None);
+    let sites = coarse.search_sites.unwrap_or_else(|| panic!("{name}: no coarse search"));
+    assert!(sites <= capmesh::cap::parameterize::DEFAULT_SEARCH_SITES && 2 * sites < mesh.n_vertices());
+    assert_eq!(coarse.transport_solves, 1, "{name}: only r* is solved at full resolution");
+    assert!(2 * coarse.newton_iterations < full.newton_iterations, "{name}: {} vs {}", coarse.newton_iterations, full.newton_iterations);
+    assert!((coarse.z_star.unwrap() - full.z_star.unwrap()).abs() < z_tolerance, "{name}: Z*");
+    assert_eq!(coarse.flipped_faces, 0);
+    assert!(coarse.angle_distortion.mean_abs < 1.02 * full.angle_distortion.mean_abs, "{name}: d_angle");
+    assert!(coarse.area_distortion.mean_abs < 1.1 * full.area_distortion.mean_abs, "{name}: d_area");
+}
+
+#[test]
+fn face_open() {
+    // The face's energy is flat around its minimum (Z* -0.02 and -0.08 differ by 0.6%).
+    compare("open_face_choi.obj.gz", 0.1);
+}
+
+#[test]
+fn brain12k_closed() {
+    compare("closed_brain12k_choi.obj.gz", 0.01);
+}
