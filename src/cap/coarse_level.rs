@@ -15,7 +15,9 @@
 //!
 //! Each radius is then solved on the coarse sites, its centroid map carried to every vertex
 //! by `P`, and the conformal energy (Eq. 12) measured on the full mesh. Only `r*` is solved at
-//! full resolution.
+//! full resolution, from the Voronoi diagram: the coarse weights interpolated by `P` (or any
+//! fraction of them down to 1/8) make some sites redundant on the hand, which the transport
+//! solver's flips cannot represent (measured and dropped).
 
 use crate::mesh::topology::neighbors_of_faces;
 use spade::{DelaunayTriangulation, HasPosition, Point2, PositionInTriangulation, Triangulation};
