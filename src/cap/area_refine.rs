@@ -27,6 +27,11 @@ pub struct AreaRefineReport {
 /// Stop when a sweep lowers `sum d_area^2` by less than this fraction.
 const TOLERANCE: f64 = 1e-4;
 
+/// Do nothing (or stop) once the mean `|d_area|` is below this: a 0.1% mean area error is
+/// below anything a remesh or a shape measure can show, and the sweeps converge slowly
+/// (the synthetic 100k disk maps at 0.00055; 50 sweeps took 1.5 s to reach 0.00053).
+pub const GOOD_ENOUGH: f64 = 1e-3;
+
 /// Refine the planar positions `plane` of the surface `(vertices, faces)` for `sweeps` sweeps
 /// at most; `lift` maps a planar point to the domain where areas are measured.
 pub fn refine_areas(
@@ -89,7 +94,7 @@ pub fn refine_towards(
     };
     let (mut total, before, mut energy) = measure(lifted);
     let mut report = AreaRefineReport { mean_abs_before: before, mean_abs_after: before, sweeps: 0 };
-    if faces.is_empty() || !total.is_finite() || total <= 0.0 {
+    if faces.is_empty() || !total.is_finite() || total <= 0.0 || before < GOOD_ENOUGH {
         return report;
     }
     let colors = color_classes(&incident, faces, fixed);
@@ -111,12 +116,12 @@ pub fn refine_towards(
                 lifted[v] = lp;
             }
         }
-        let (t, _, e) = measure(lifted);
+        let (t, mean_abs, e) = measure(lifted);
         report.sweeps = sweep + 1;
         let decrease = (energy - e) / energy.max(f64::MIN_POSITIVE);
         total = t;
         energy = e;
-        if decrease < TOLERANCE {
+        if decrease < TOLERANCE || mean_abs < GOOD_ENOUGH {
             break;
         }
     }

@@ -10,7 +10,7 @@
 //! minimiser is found by the fixed-point iteration `L_S(f^k)_II f^{k+1}_I = -L_S(f^k)_IB f_B`.
 
 use super::{pin, FlattenError};
-use crate::linalg::{SpdSolver, TripletList};
+use crate::linalg::{ScatterAssembler, SpdSolver, TripletList};
 use crate::mesh::geometry::{signed_area_2d, triangle_area};
 
 /// Options of the stretch energy minimisation.
@@ -110,6 +110,7 @@ pub fn stretch_energy_map(
     let mut report = StretchReport { initial_energy_ratio: ratio(&f), ..Default::default() };
     let mut energy = stretch_energy(vertices, faces, &f);
     let mut solver = SpdSolver::new();
+    let mut assembler = ScatterAssembler::new();
     for it in 0..options.max_iterations {
         let weights = corner_weights(vertices, faces, &f);
         let mut trip = TripletList::with_capacity(n_free, 12 * faces.len());
@@ -135,7 +136,7 @@ pub fn stretch_energy_map(
         if n_free == 0 {
             break;
         }
-        let mat = trip.assemble("stretch energy")?;
+        let mat = assembler.assemble(&trip, "stretch energy")?;
         solver.factor(&mat, "stretch energy")?;
         solver.solve_in_place(&mut rhs, "stretch energy")?;
         let mut next = f.clone();

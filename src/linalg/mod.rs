@@ -5,4 +5,4 @@ pub mod laplacian;
 pub mod sparse;
 
 pub use laplacian::{cotangent_weights, CotanWeights};
-pub use sparse::{LuSolver, SolveError, SpdSolver, TripletList};
+pub use sparse::{LuSolver, ScatterAssembler, SolveError, SpdSolver, TripletList};
