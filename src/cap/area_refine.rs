@@ -10,7 +10,7 @@
 //! when every incident face stays positively oriented in the plane and the local sum falls.
 //! A fold-free map therefore stays fold-free, and the boundary (fixed vertices) never moves.
 
-use crate::mesh::geometry::{signed_area_2d, triangle_area};
+use crate::mesh::geometry::{cross, dot, signed_area_2d, sub, triangle_area};
 use rayon::prelude::*;
 
 /// What the refinement did.
@@ -269,18 +269,6 @@ fn color_classes(incident: &[Vec<usize>], faces: &[[u32; 3]], fixed: &[bool]) ->
         classes[c].push(v);
     }
     classes
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Shortest planar edge at `v` among its incident faces.

@@ -11,10 +11,13 @@
 use super::planar_transport::TransportMap;
 use super::untangle::{untangle, UntangleReport};
 use crate::linalg::{CotanWeights, SolveError, SpdSolver};
+use faer::sparse::SparseColMat;
 use crate::metrics::{area_distortion, Stats};
 use rayon::prelude::*;
 
-/// Smooths centroid maps of one mesh; keeps the factorization's symbolic part.
+/// Smooths centroid maps of one mesh; keeps the factorization's symbolic part (clones share
+/// it, see [`CentroidSmoother::prime`]).
+#[derive(Clone)]
 pub struct CentroidSmoother<'a> {
     weights: &'a CotanWeights,
     fixed: &'a [bool],
@@ -28,11 +31,30 @@ impl<'a> CentroidSmoother<'a> {
         Self { weights, fixed, solver: SpdSolver::new() }
     }
 
+    /// Compute the symbolic factorization the smoothing systems of masses `tau` share (every
+    /// `kappa > 0` gives the same pattern), so that clones factor numerically only.
+    pub fn prime(&mut self, c: &[[f64; 2]], tau: &[f64]) -> Result<(), SolveError> {
+        if let Some((mat, _, _)) = self.system(c, tau, 1.0)? {
+            self.solver.analyze(&mat, "centroid smoothing")?;
+        }
+        Ok(())
+    }
+
     /// Regularised positions for centroids `c` with masses `tau`.
     pub fn smooth(&mut self, c: &[[f64; 2]], tau: &[f64], kappa: f64) -> Result<Vec<[f64; 2]>, SolveError> {
         if kappa <= 0.0 {
             return Ok(c.to_vec());
         }
+        let Some((mat, mut rhs, index)) = self.system(c, tau, kappa)? else { return Ok(c.to_vec()) };
+        self.solver.factor(&mat, "centroid smoothing")?;
+        self.solver.solve_in_place(&mut rhs, "centroid smoothing")?;
+        Ok((0..c.len()).map(|v| index[v].map_or(c[v], |i| [rhs[0][i], rhs[1][i]])).collect())
+    }
+
+    /// The smoothing system (matrix, right-hand sides, free-vertex numbering) for `kappa`;
+    /// `None` when no vertex is free.
+    #[allow(clippy::type_complexity)]
+    fn system(&self, c: &[[f64; 2]], tau: &[f64], kappa: f64) -> Result<Option<(SparseColMat<usize, f64>, Vec<Vec<f64>>, Vec<Option<usize>>)>, SolveError> {
         let n = c.len();
         let beta = kappa * tau.iter().sum::<f64>() / n as f64;
         let mut index = vec![None; n];
@@ -44,7 +66,7 @@ impl<'a> CentroidSmoother<'a> {
             }
         }
         if m == 0 {
-            return Ok(c.to_vec());
+            return Ok(None);
         }
         let mut trip = self.weights.restricted_laplacian(&index, m, |w| beta * w);
         let mut rhs = vec![vec![0.0; m], vec![0.0; m]];
@@ -63,10 +85,7 @@ impl<'a> CentroidSmoother<'a> {
                 }
             }
         }
-        let mat = trip.assemble("centroid smoothing")?;
-        self.solver.factor(&mat, "centroid smoothing")?;
-        self.solver.solve_in_place(&mut rhs, "centroid smoothing")?;
-        Ok((0..n).map(|v| index[v].map_or(c[v], |i| [rhs[0][i], rhs[1][i]])).collect())
+        Ok(Some((trip.assemble("centroid smoothing")?, rhs, index)))
     }
 }
 
@@ -142,8 +161,13 @@ pub fn regularise(
     smoothing: Smoothing,
     to_domain: &(dyn Fn(&[[f64; 2]]) -> Vec<[f64; 3]> + Sync),
 ) -> Result<Regularised, SolveError> {
+    // One symbolic factorization for all candidates (they run in parallel on clones).
+    let mut primed = CentroidSmoother::new(weights, fixed);
+    if smoothing == Smoothing::Auto {
+        primed.prime(&map.centroids, &map.masses)?;
+    }
     let evaluate = |kappa: f64| -> Result<Candidate, SolveError> {
-        let mut p = CentroidSmoother::new(weights, fixed).smooth(&map.centroids, &map.masses, kappa)?;
+        let mut p = primed.clone().smooth(&map.centroids, &map.masses, kappa)?;
         let rep = untangle(&mut p, faces, fixed, radius);
         let d = Stats::of(area_distortion(vertices, &to_domain(&p), faces)).mean_abs;
         let trial = SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before };

@@ -74,6 +74,18 @@ pub fn linear_beltrami_solver(
     mu: &[[f64; 2]],
     fixed: &[(u32, [f64; 2])],
 ) -> Result<Vec<[f64; 2]>, FlattenError> {
+    linear_beltrami_solver_with(vertices, faces, mu, fixed, &mut SpdSolver::new())
+}
+
+/// [`linear_beltrami_solver`] with `solver` (its symbolic factorization is reused when an
+/// earlier system had the same free vertices).
+pub(crate) fn linear_beltrami_solver_with(
+    vertices: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    mu: &[[f64; 2]],
+    fixed: &[(u32, [f64; 2])],
+    solver: &mut SpdSolver,
+) -> Result<Vec<[f64; 2]>, FlattenError> {
     let n = vertices.len();
     let mut pos = vec![[0.0; 2]; n];
     let (is_fixed, index, n_free) = pin(&mut pos, fixed);
@@ -117,7 +129,6 @@ pub fn linear_beltrami_solver(
     }
     if n_free > 0 {
         let mat = trip.assemble("Beltrami")?;
-        let mut solver = SpdSolver::new();
         solver.factor(&mat, "Beltrami")?;
         solver.solve_in_place(&mut rhs, "Beltrami")?;
         for v in 0..n {

@@ -5,12 +5,12 @@
 //! corners (angles kept, strong area compression); `lambda = 1` keeps the equiareal stretch
 //! energy map. The paper's default is `lambda = 0.2`.
 
-use super::beltrami::{beltrami_coefficients, linear_beltrami_solver};
-use super::harmonic::{count_flipped, harmonic_extension};
+use super::beltrami::{beltrami_coefficients, linear_beltrami_solver_with};
+use super::harmonic::{count_flipped, harmonic_extension_with};
 use super::puncture::{choose_puncture, Puncture, PunctureOptions};
-use super::stretch_energy::{stretch_energy_map, StretchOptions, StretchReport};
+use super::stretch_energy::{stretch_energy_map_with, StretchOptions, StretchReport};
 use super::FlattenError;
-use crate::linalg::cotangent_weights;
+use crate::linalg::{cotangent_weights, SpdSolver};
 use crate::mesh::geometry::{norm, sub};
 use crate::mesh::topology::edge_faces;
 use crate::mesh::{MeshError, TriMesh};
@@ -83,13 +83,16 @@ pub fn flatten_closed(mesh: &TriMesh, options: &ClosedFlattenOptions) -> Result<
     let fixed = on_circle_by_arc_length(&mesh.vertices, &puncture.quad);
     let n = mesh.n_vertices();
     let weights = cotangent_weights(&mesh.vertices, &faces);
-    let (initial, _) = harmonic_extension(n, &faces, &weights, &fixed)?;
-    let (sem, stretch) = stretch_energy_map(&mesh.vertices, &faces, &fixed, &initial, &options.stretch)?;
+    // One symbolic factorization for the harmonic, stretch-energy and Beltrami systems (the
+    // same free vertices and edges).
+    let mut solver = SpdSolver::new();
+    let (initial, _) = harmonic_extension_with(n, &faces, &weights, &fixed, &mut solver)?;
+    let (sem, stretch) = stretch_energy_map_with(&mesh.vertices, &faces, &fixed, &initial, &options.stretch, &mut solver)?;
     let mu: Vec<[f64; 2]> = beltrami_coefficients(&mesh.vertices, &faces, &sem)
         .into_iter()
         .map(|m| scaled_coefficient(m, options.lambda))
         .collect();
-    let uv = linear_beltrami_solver(&mesh.vertices, &faces, &mu, &fixed)?;
+    let uv = linear_beltrami_solver_with(&mesh.vertices, &faces, &mu, &fixed, &mut solver)?;
     let flipped_faces = count_flipped(&uv, &faces);
     Ok(ClosedFlattening { puncture, faces, uv, report: ClosedFlattenReport { stretch, lambda: options.lambda, flipped_faces } })
 }
@@ -115,13 +118,14 @@ pub fn composite_disk_map(
     }
     let fixed = on_circle_by_arc_length(vertices, boundary);
     let weights = cotangent_weights(vertices, faces);
-    let (initial, _) = harmonic_extension(vertices.len(), faces, &weights, &fixed)?;
-    let (sem, stretch) = stretch_energy_map(vertices, faces, &fixed, &initial, &options.stretch)?;
+    let mut solver = SpdSolver::new();
+    let (initial, _) = harmonic_extension_with(vertices.len(), faces, &weights, &fixed, &mut solver)?;
+    let (sem, stretch) = stretch_energy_map_with(vertices, faces, &fixed, &initial, &options.stretch, &mut solver)?;
     let mu: Vec<[f64; 2]> = beltrami_coefficients(vertices, faces, &sem)
         .into_iter()
         .map(|m| scaled_coefficient(m, options.lambda))
         .collect();
-    let uv = linear_beltrami_solver(vertices, faces, &mu, &fixed)?;
+    let uv = linear_beltrami_solver_with(vertices, faces, &mu, &fixed, &mut solver)?;
     let flipped_faces = count_flipped(&uv, faces);
     Ok((uv, ClosedFlattenReport { stretch, lambda: options.lambda, flipped_faces }))
 }

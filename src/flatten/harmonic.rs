@@ -31,13 +31,25 @@ pub fn harmonic_extension(
     weights: &CotanWeights,
     fixed: &[(u32, [f64; 2])],
 ) -> Result<(Vec<[f64; 2]>, HarmonicWeights), FlattenError> {
-    let uv = solve(n_vertices, weights, fixed, |w| w)?;
+    harmonic_extension_with(n_vertices, faces, weights, fixed, &mut SpdSolver::new())
+}
+
+/// [`harmonic_extension`] with `solver`, whose symbolic factorization the later systems on
+/// the same free vertices (stretch energy, Beltrami) reuse.
+pub(crate) fn harmonic_extension_with(
+    n_vertices: usize,
+    faces: &[[u32; 3]],
+    weights: &CotanWeights,
+    fixed: &[(u32, [f64; 2])],
+    solver: &mut SpdSolver,
+) -> Result<(Vec<[f64; 2]>, HarmonicWeights), FlattenError> {
+    let uv = solve(n_vertices, weights, fixed, |w| w, solver)?;
     if count_flipped(&uv, faces) == 0 {
         return Ok((uv, HarmonicWeights::Cotangent));
     }
     let mean = weights.weights.iter().map(|w| w.abs()).sum::<f64>() / weights.weights.len().max(1) as f64;
     let floor = 1e-3 * mean;
-    let uv = solve(n_vertices, weights, fixed, |w| w.max(floor))?;
+    let uv = solve(n_vertices, weights, fixed, |w| w.max(floor), solver)?;
     Ok((uv, HarmonicWeights::ClampedCotangent))
 }
 
@@ -46,6 +58,7 @@ fn solve(
     weights: &CotanWeights,
     fixed: &[(u32, [f64; 2])],
     map: impl Fn(f64) -> f64 + Copy,
+    solver: &mut SpdSolver,
 ) -> Result<Vec<[f64; 2]>, FlattenError> {
     let mut uv = vec![[0.0; 2]; n_vertices];
     let mut is_fixed = vec![false; n_vertices];
@@ -75,7 +88,6 @@ fn solve(
             }
         }
     }
-    let mut solver = SpdSolver::new();
     solver.factor(&lap, "harmonic map")?;
     solver.solve_in_place(&mut rhs, "harmonic map")?;
     for v in 0..n_vertices {

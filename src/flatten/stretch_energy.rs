@@ -99,6 +99,19 @@ pub fn stretch_energy_map(
     initial: &[[f64; 2]],
     options: &StretchOptions,
 ) -> Result<(Vec<[f64; 2]>, StretchReport), FlattenError> {
+    stretch_energy_map_with(vertices, faces, fixed, initial, options, &mut SpdSolver::new())
+}
+
+/// [`stretch_energy_map`] with `solver` (its symbolic factorization is reused when an
+/// earlier system had the same free vertices).
+pub(crate) fn stretch_energy_map_with(
+    vertices: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    fixed: &[(u32, [f64; 2])],
+    initial: &[[f64; 2]],
+    options: &StretchOptions,
+    solver: &mut SpdSolver,
+) -> Result<(Vec<[f64; 2]>, StretchReport), FlattenError> {
     let n = vertices.len();
     let mut f = initial.to_vec();
     let (is_fixed, index, n_free) = pin(&mut f, fixed);
@@ -109,7 +122,6 @@ pub fn stretch_energy_map(
     };
     let mut report = StretchReport { initial_energy_ratio: ratio(&f), ..Default::default() };
     let mut energy = stretch_energy(vertices, faces, &f);
-    let mut solver = SpdSolver::new();
     let mut assembler = ScatterAssembler::new();
     for it in 0..options.max_iterations {
         let weights = corner_weights(vertices, faces, &f);

@@ -10,6 +10,7 @@ use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LltRef, Symbol
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Conj, Mat, Par, Side};
+use std::sync::Arc;
 
 /// Errors of the sparse direct solvers.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -161,8 +162,7 @@ impl ScatterAssembler {
 
     /// Record the pattern of `list` and where each of its entries goes.
     fn record(&mut self, list: &TripletList, what: &'static str) -> Result<(), SolveError> {
-        // Assemble the entries' indices as values: each stored value then holds one of the
-        // entries that land on it, and every entry finds its slot by binary search in its
+        // The pattern from a full assembly; each entry finds its slot by binary search in its
         // column (rows are sorted).
         let mat = list.assemble(what)?;
         let s = mat.symbolic();
@@ -203,9 +203,12 @@ fn check_finite(x: &[f64], what: &'static str) -> Result<(), SolveError> {
 /// 10^3 to 10^6 unknowns and a planar-graph pattern, where faer's thread pool spent more time
 /// waking workers than they saved (53k-vertex hand: flattening 2.3 s sequential against 6.8 s
 /// on two threads). Parallelism lives one level up, over independent work.
-#[derive(Default)]
+///
+/// Clones share the symbolic factorization: [`SpdSolver::analyze`] once, then clone for
+/// parallel numeric factorizations of matrices with that pattern.
+#[derive(Default, Clone)]
 pub struct SpdSolver {
-    symbolic: Option<(Vec<usize>, Vec<usize>, SymbolicCholesky<usize>)>,
+    symbolic: Option<Arc<(Vec<usize>, Vec<usize>, SymbolicCholesky<usize>)>>,
     values: Vec<f64>,
     factored: bool,
     /// How many symbolic factorizations were computed (for reports and tests).
@@ -222,14 +225,8 @@ impl SpdSolver {
     pub fn factor(&mut self, a: &SparseColMat<usize, f64>, what: &'static str) -> Result<(), SolveError> {
         self.factored = false;
         let backend = |e: &dyn std::fmt::Debug| SolveError::Backend { what, message: format!("{e:?}") };
-        let reuse = matches!(&self.symbolic, Some((cp, ri, _)) if same_pattern(a, cp, ri));
-        if !reuse {
-            let s = a.symbolic();
-            let sym = factorize_symbolic_cholesky(s, Side::Lower, SymmetricOrdering::Amd, Default::default()).map_err(|e| backend(&e))?;
-            self.symbolic = Some((s.col_ptr().to_vec(), s.row_idx().to_vec(), sym));
-            self.symbolic_count += 1;
-        }
-        let sym = &self.symbolic.as_ref().ok_or(SolveError::Singular { what })?.2;
+        self.analyze(a, what)?;
+        let sym = &self.symbolic.as_deref().ok_or(SolveError::Singular { what })?.2;
         self.values.clear();
         self.values.resize(sym.len_val(), 0.0);
         let mut buf = MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())).map_err(|e| backend(&e))?;
@@ -239,9 +236,23 @@ impl SpdSolver {
         Ok(())
     }
 
+    /// Compute the symbolic factorization of `a`'s pattern unless the solver has it already.
+    pub fn analyze(&mut self, a: &SparseColMat<usize, f64>, what: &'static str) -> Result<(), SolveError> {
+        if matches!(self.symbolic.as_deref(), Some((cp, ri, _)) if same_pattern(a, cp, ri)) {
+            return Ok(());
+        }
+        self.factored = false;
+        let s = a.symbolic();
+        let sym = factorize_symbolic_cholesky(s, Side::Lower, SymmetricOrdering::Amd, Default::default())
+            .map_err(|e| SolveError::Backend { what, message: format!("{e:?}") })?;
+        self.symbolic = Some(Arc::new((s.col_ptr().to_vec(), s.row_idx().to_vec(), sym)));
+        self.symbolic_count += 1;
+        Ok(())
+    }
+
     /// Solve for each right-hand side column (each slice of length n) in place.
     pub fn solve_in_place(&self, rhs: &mut [Vec<f64>], what: &'static str) -> Result<(), SolveError> {
-        let sym = match &self.symbolic {
+        let sym = match self.symbolic.as_deref() {
             Some((_, _, sym)) if self.factored => sym,
             _ => return Err(SolveError::Singular { what }),
         };
