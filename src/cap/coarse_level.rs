@@ -20,7 +20,8 @@
 //! solver's flips cannot represent (measured and dropped).
 
 use crate::mesh::topology::neighbors_of_faces;
-use spade::{DelaunayTriangulation, HasPosition, Point2, PositionInTriangulation, Triangulation};
+use crate::omt::triangulation::Site;
+use spade::{DelaunayTriangulation, Point2, PositionInTriangulation, Triangulation};
 
 /// Coarse sites, their target masses and the map from coarse to fine positions.
 #[derive(Debug, Clone)]
@@ -37,18 +38,6 @@ pub struct CoarseLevel {
     pub hops: usize,
     /// Per fine vertex, up to three `(coarse site, weight)` pairs (unused slots weigh 0).
     prolongation: Vec<[(u32, f64); 3]>,
-}
-
-struct Site {
-    p: Point2<f64>,
-    id: u32,
-}
-
-impl HasPosition for Site {
-    type Scalar = f64;
-    fn position(&self) -> Point2<f64> {
-        self.p
-    }
 }
 
 impl CoarseLevel {

@@ -32,9 +32,12 @@ pub enum TriangulationError {
     Insertion(String),
 }
 
-struct Site {
-    p: Point2<f64>,
-    id: u32,
+/// A point for spade's Delaunay triangulation carrying the index of its site.
+pub(crate) struct Site {
+    /// Position.
+    pub(crate) p: Point2<f64>,
+    /// Index in the caller's site list.
+    pub(crate) id: u32,
 }
 
 impl HasPosition for Site {
