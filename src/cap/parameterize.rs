@@ -12,7 +12,7 @@ use super::brent;
 use super::coarse_level::CoarseLevel;
 use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
 use super::planar_transport::{PlanarTransport, TransportMap};
-use super::regularize::{regularise, Smoothing, SmoothingTrial};
+use super::regularize::{held_near, regularise, Smoothing, SmoothingTrial, PUNCTURE_HELD_RINGS};
 use super::untangle::UntangleReport;
 use super::stereographic::{inverse_stereographic, radius_of_z_star, z_star_of_radius};
 use crate::error::Error;
@@ -460,7 +460,8 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
     };
     let t_reg = Instant::now();
     let cot = cotangent_weights(&work.vertices, &faces);
-    let chosen = regularise(&transported, &work.vertices, &faces, &cot, &on_boundary, radius, options.smoothing, &to_cap).map_err(OmtError::Linear)?;
+    let held = if kind == SurfaceKind::ClosedSphere { held_near(&on_boundary, &faces, PUNCTURE_HELD_RINGS) } else { on_boundary.clone() };
+    let chosen = regularise(&transported, &work.vertices, &faces, &cot, &on_boundary, &held, radius, options.smoothing, &to_cap).map_err(OmtError::Linear)?;
     let (kappa, mut plane, untangle_report, trials) = (chosen.kappa, chosen.positions, chosen.untangle, chosen.trials);
     let lift_one = |q: [f64; 2]| if options.domain == Domain::Disk { [q[0], q[1], 0.0] } else { inverse_stereographic(q) };
     let regularise_seconds = t_reg.elapsed().as_secs_f64();
