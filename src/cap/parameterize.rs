@@ -5,7 +5,8 @@
 //! `h_r` on the disk of radius `r` with the stereographic density; `r*` minimises the
 //! area-normalised mean of `|mu|^2` of `(h_r o r g)^-1` (Eq. 12) by Brent's method over `Z*`
 //! in `[-0.995, 0.995]` (closed surfaces: run in the variable `atanh(Z*)`, tolerance on
-//! `Z*`); then the inverse stereographic projection.
+//! `Z*`; large meshes: on a coarse level of transport sites, [`super::coarse_level`], with
+//! only `r*` solved at full resolution); then the inverse stereographic projection.
 
 use super::area_refine::{refine_areas, AreaRefineReport};
 use super::brent;
@@ -117,7 +118,7 @@ pub const DEFAULT_SEARCH_SITES: usize = 4000;
 /// the full one only while the coarse level resolves the map: on the synthetic 164k-vertex
 /// ellipsoid, 2565 sites (1 in 64) put the minimum at `Z* = -0.967` where the full curve
 /// falls to the bound `-0.9945` (mean `|d_area|` 0.13 instead of 0.010), while 7683 sites
-/// (1 in 21) follow it to the bound. The shared meshes search on 1 in 4 to 1 in 20.
+/// (1 in 21) follow it to the bound. The shared meshes search on 1 in 3 to 1 in 21.
 pub const SEARCH_RATIO: usize = 16;
 
 /// Sweeps of the area refinement by default. On the shared closed meshes (1.8k to 48k

@@ -68,8 +68,9 @@ enum Command {
         #[arg(long, default_value = "best")]
         puncture_end: capmesh::cap::PunctureEnd,
         /// Transport sites of the radius search: meshes with more than twice as many
-        /// vertices search on a coarse level this size and solve the full problem at r* only
-        /// (0: search at full resolution, the paper's method).
+        /// vertices search on a coarse level of at most max(this, vertices / 16) sites and
+        /// solve the full problem at r* only (0: search at full resolution, the paper's
+        /// method).
         #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_SEARCH_SITES)]
         search_sites: usize,
     },
