@@ -18,6 +18,9 @@
 //! [`crate::cap::coarse_level`]) and the weights of the radial transport of a uniform site
 //! density onto the stereographic one (hand 11 -> 10 iterations, but the 48k brain 9 -> 17:
 //! a punctured closed surface's sites fill a square, not the disk).
+//! Nor does starting each line search at twice the last accepted step (it would skip the
+//! rejected trials, ~16 ms each): the full-resolution steps then went from 15 to 26 on the
+//! lung lobe and 9 to 10 on the 48k brain.
 
 use super::cells::{integrate, CellIntegrals};
 use super::density::RadialDensity;
