@@ -182,7 +182,7 @@ fn plain_centroid_map_of_a_punctured_surface_stays_area_preserving() {
 }
 
 /// A smoothed centroid map of a punctured surface: the few vertices that span the outer half
-/// of the disk near the puncture are left at their centroids (cap::regularize::held_near).
+/// of the disk near the puncture are left at their centroids (cap::regularize::PUNCTURE_HELD_RINGS).
 /// Smoothing them folded faces there that the repair could only undo by squeezing the whole
 /// map (this bumpy 41k ellipsoid at kappa = 3: mean |d_area| 0.59 before, 0.006 with them held).
 #[test]

@@ -10,7 +10,7 @@
 //! when every incident face stays positively oriented in the plane and the local sum falls.
 //! A fold-free map therefore stays fold-free, and the boundary (fixed vertices) never moves.
 
-use crate::mesh::geometry::{cross, dot, signed_area_2d, sub, triangle_area};
+use crate::mesh::geometry::{cross, dot, norm, signed_area_2d, sub, triangle_area};
 use rayon::prelude::*;
 
 /// What the refinement did.
@@ -187,7 +187,7 @@ impl LocalProblem<'_> {
                 let k = f.iter().position(|&u| u as usize == v)?;
                 let (a, b) = (lifted[f[(k + 1) % 3] as usize], lifted[f[(k + 2) % 3] as usize]);
                 let n = cross(sub(a, l0), sub(b, l0));
-                let twice_area = dot(n, n).sqrt();
+                let twice_area = norm(n);
                 if !(twice_area > 0.0) {
                     return None;
                 }

@@ -19,6 +19,7 @@
 //! fraction of them down to 1/8) make some sites redundant on the hand, which the transport
 //! solver's flips cannot represent (measured and dropped).
 
+use crate::mesh::geometry::signed_area_2d;
 use crate::mesh::topology::neighbors_of_faces;
 use crate::omt::triangulation::Site;
 use spade::{DelaunayTriangulation, Point2, PositionInTriangulation, Triangulation};
@@ -177,9 +178,8 @@ fn point(p: [f64; 2]) -> Point2<f64> {
 
 /// Barycentric coordinates of `q` in the triangle `p`, clamped to be non-negative.
 fn barycentric(p: [[f64; 2]; 3], q: [f64; 2]) -> [f64; 3] {
-    let area = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    let total = area(p[0], p[1], p[2]);
-    let mut l = [area(q, p[1], p[2]), area(p[0], q, p[2]), area(p[0], p[1], q)].map(|x| (x / total).max(0.0));
+    let total = signed_area_2d(p[0], p[1], p[2]);
+    let mut l = [signed_area_2d(q, p[1], p[2]), signed_area_2d(p[0], q, p[2]), signed_area_2d(p[0], p[1], q)].map(|x| (x / total).max(0.0));
     let s: f64 = l.iter().sum();
     if !(s > 0.0 && total != 0.0) {
         return [1.0, 0.0, 0.0];
@@ -203,7 +203,7 @@ mod tests {
     use super::*;
     use crate::mesh::geometry::vertex_areas;
     use crate::mesh::shapes::grid_disk;
-    use crate::mesh::topology::is_boundary_vertex;
+    use crate::mesh::topology::{is_boundary_vertex, within_rings};
 
     fn disk_level(rings: usize, max_sites: usize) -> (crate::mesh::TriMesh, Vec<[f64; 2]>, Vec<bool>, Vec<f64>, CoarseLevel) {
         let mesh = grid_disk(rings);
@@ -225,23 +225,9 @@ mod tests {
         assert_eq!(boundary_sites, rim);
         assert_eq!(level.on_boundary.iter().filter(|b| **b).count(), rim);
         // Every vertex is within `hops` edges of a site.
-        let neighbors = neighbors_of_faces(mesh.n_vertices(), &mesh.faces);
-        let mut depth = vec![usize::MAX; mesh.n_vertices()];
-        let mut frontier: Vec<u32> = level.fine_vertex.clone();
-        frontier.iter().for_each(|&v| depth[v as usize] = 0);
-        for d in 1..=level.hops {
-            let mut next = Vec::new();
-            for &v in &frontier {
-                for &u in &neighbors[v as usize] {
-                    if depth[u as usize] == usize::MAX {
-                        depth[u as usize] = d;
-                        next.push(u);
-                    }
-                }
-            }
-            frontier = next;
-        }
-        assert!(depth.iter().all(|&d| d <= level.hops));
+        let mut is_site = vec![false; mesh.n_vertices()];
+        level.fine_vertex.iter().for_each(|&v| is_site[v as usize] = true);
+        assert!(within_rings(&is_site, &mesh.faces, level.hops).iter().all(|&w| w));
     }
 
     #[test]

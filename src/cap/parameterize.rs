@@ -13,7 +13,7 @@ use super::brent;
 use super::coarse_level::CoarseLevel;
 use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
 use super::planar_transport::{PlanarTransport, TransportMap};
-use super::regularize::{held_near, regularise, Smoothing, SmoothingTrial, PUNCTURE_HELD_RINGS};
+use super::regularize::{regularise, Smoothing, SmoothingTrial, PUNCTURE_HELD_RINGS};
 use super::untangle::UntangleReport;
 use super::stereographic::{inverse_stereographic, radius_of_z_star, z_star_of_radius};
 use crate::error::Error;
@@ -21,6 +21,7 @@ use crate::flatten::closed::{composite_disk_map, flatten_closed, ClosedFlattenOp
 use crate::flatten::puncture::Puncture;
 use crate::flatten::{disk_conformal_map, DiskConformalOptions, DiskConformalReport};
 use crate::mesh::geometry::{folded_faces, lift, vertex_areas};
+use crate::mesh::topology::within_rings;
 use crate::mesh::{repair, validate, SurfaceKind, TriMesh};
 use crate::linalg::cotangent_weights;
 use crate::metrics::{angle_distortion, area_distortion, conformal_energy, conformal_energy_surface_weighted, Stats};
@@ -461,7 +462,7 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
     };
     let t_reg = Instant::now();
     let cot = cotangent_weights(&work.vertices, &faces);
-    let held = if kind == SurfaceKind::ClosedSphere { held_near(&on_boundary, &faces, PUNCTURE_HELD_RINGS) } else { on_boundary.clone() };
+    let held = if kind == SurfaceKind::ClosedSphere { within_rings(&on_boundary, &faces, PUNCTURE_HELD_RINGS) } else { on_boundary.clone() };
     let chosen = regularise(&transported, &work.vertices, &faces, &cot, &on_boundary, &held, radius, options.smoothing, &to_cap).map_err(OmtError::Linear)?;
     let (kappa, mut plane, untangle_report, trials) = (chosen.kappa, chosen.positions, chosen.untangle, chosen.trials);
     let lift_one = |q: [f64; 2]| if options.domain == Domain::Disk { [q[0], q[1], 0.0] } else { inverse_stereographic(q) };

@@ -147,7 +147,7 @@ pub struct Regularised {
 }
 
 /// Rings around the puncture of a closed surface that the smoothing leaves at their centroids
-/// (see [`held_near`]).
+/// (see [`crate::mesh::topology::within_rings`]).
 ///
 /// Near the puncture the stereographic density is tiny at the closed surfaces' radius
 /// (`Z* = -0.9945`, `r* = 19`), so a few vertices span the outer half of the disk with faces
@@ -159,31 +159,11 @@ pub struct Regularised {
 /// to 0.008. Open surfaces hold none: the hippocampal sheet lost (0.0219 -> 0.0235).
 pub const PUNCTURE_HELD_RINGS: usize = 3;
 
-/// `fixed` grown by `rings` rings of neighbours (vertices joined by a face edge).
-pub fn held_near(fixed: &[bool], faces: &[[u32; 3]], rings: usize) -> Vec<bool> {
-    let neighbors = crate::mesh::topology::neighbors_of_faces(fixed.len(), faces);
-    let mut held = fixed.to_vec();
-    let mut frontier: Vec<u32> = (0..fixed.len()).filter(|&v| fixed[v]).map(|v| v as u32).collect();
-    for _ in 0..rings {
-        let mut next = Vec::new();
-        for &v in &frontier {
-            for &u in &neighbors[v as usize] {
-                if !held[u as usize] {
-                    held[u as usize] = true;
-                    next.push(u);
-                }
-            }
-        }
-        frontier = next;
-    }
-    held
-}
-
 /// Regularise the transport map `map` of the surface `(vertices, faces)`, repair its folds
 /// and keep the candidate with no fold left and the smallest mean `|d_area|` measured on the
 /// domain (`to_domain` lifts planar positions onto the cap or the planar disk). `fixed`
-/// vertices (the boundary) never move; `held` vertices (a superset, see [`held_near`]) are
-/// not smoothed but the fold repair may move them.
+/// vertices (the boundary) never move; `held` vertices (a superset, see
+/// [`PUNCTURE_HELD_RINGS`]) are not smoothed but the fold repair may move them.
 /// The candidates are independent and evaluated in parallel.
 #[allow(clippy::too_many_arguments)]
 pub fn regularise(
@@ -213,19 +193,20 @@ pub fn regularise(
         Smoothing::Fixed(k) => vec![evaluate(k)?],
         Smoothing::Auto => walk_grid(&evaluate)?,
     };
-    let best = best_of(&done).ok_or(SolveError::Singular { what: "regularisation (no candidate)" })?;
+    let best = best_of(done.iter()).ok_or(SolveError::Singular { what: "regularisation (no candidate)" })?;
     let trials = done.iter().map(|c| c.trial).collect();
     let mut kept = done.swap_remove(best).kept;
     kept.trials = trials;
     Ok(kept)
 }
 
-/// Index in `done` of the candidate with the smallest key.
-fn best_of(done: &[Candidate]) -> Option<usize> {
-    (0..done.len()).fold(None, |b: Option<usize>, i| match b {
-        Some(j) if !(done[i].key < done[j].key) => Some(j),
-        _ => Some(i),
-    })
+/// Position of the candidate with the smallest key (the first of equals); `None` when there
+/// is none.
+fn best_of<'c>(candidates: impl Iterator<Item = &'c Candidate>) -> Option<usize> {
+    candidates.enumerate().fold(None, |best: Option<(usize, &Candidate)>, (i, c)| match best {
+        Some((j, b)) if !(c.key < b.key) => Some((j, b)),
+        _ => Some((i, c)),
+    }).map(|(i, _)| i)
 }
 
 /// Mean `|d_area|` above which the local search of [`Smoothing::Auto`] evaluates the whole
@@ -250,7 +231,7 @@ fn walk_grid(evaluate: &(dyn Fn(f64) -> Result<Candidate, SolveError> + Sync)) -
     while !next.is_empty() {
         let batch: Vec<Candidate> = next.par_iter().map(|&i| evaluate(AUTO_KAPPAS[i])).collect::<Result<_, _>>()?;
         done.extend(next.iter().copied().zip(batch));
-        let best = (0..done.len()).fold(0, |b, i| if done[i].1.key < done[b].1.key { i } else { b });
+        let Some(best) = best_of(done.iter().map(|(_, c)| c)) else { break };
         let at = done[best].0;
         let seen = |i: usize| done.iter().any(|(j, _)| *j == i);
         next.clear();
@@ -261,33 +242,14 @@ fn walk_grid(evaluate: &(dyn Fn(f64) -> Result<Candidate, SolveError> + Sync)) -
         }
         next.dedup();
     }
-    let best = (0..done.len()).fold(0, |b, i| if done[i].1.key < done[b].1.key { i } else { b });
-    if done[best].1.key.0 || !(done[best].1.key.1 <= WALK_TRUST) {
+    let poor = best_of(done.iter().map(|(_, c)| c)).is_some_and(|b| done[b].1.key.0 || !(done[b].1.key.1 <= WALK_TRUST));
+    if poor {
         let rest: Vec<usize> = (0..AUTO_KAPPAS.len()).filter(|i| !done.iter().any(|(j, _)| j == i)).collect();
         let batch: Vec<Candidate> = rest.par_iter().map(|&i| evaluate(AUTO_KAPPAS[i])).collect::<Result<_, _>>()?;
         done.extend(rest.into_iter().zip(batch));
     }
     done.sort_by_key(|(i, _)| *i);
     Ok(done.into_iter().map(|(_, c)| c).collect())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::shapes::grid_disk;
-    use crate::mesh::topology::is_boundary_vertex;
-
-    #[test]
-    fn held_rings_grow_one_ring_at_a_time() {
-        // grid_disk(n): ring i has 6 i vertices; the rim is ring n.
-        let mesh = grid_disk(10);
-        let rim = is_boundary_vertex(&mesh);
-        let count = |h: &[bool]| h.iter().filter(|x| **x).count();
-        assert_eq!(count(&held_near(&rim, &mesh.faces, 0)), 60);
-        assert_eq!(count(&held_near(&rim, &mesh.faces, 1)), 60 + 54);
-        assert_eq!(count(&held_near(&rim, &mesh.faces, 3)), 60 + 54 + 48 + 42);
-        assert_eq!(count(&held_near(&rim, &mesh.faces, 20)), mesh.n_vertices());
-    }
 }
 
 /// One evaluated smoothing strength.

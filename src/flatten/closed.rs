@@ -81,20 +81,8 @@ pub fn flatten_closed(mesh: &TriMesh, options: &ClosedFlattenOptions) -> Result<
         .collect();
     // Quad corners on the unit circle by arc length.
     let fixed = on_circle_by_arc_length(&mesh.vertices, &puncture.quad);
-    let n = mesh.n_vertices();
-    let weights = cotangent_weights(&mesh.vertices, &faces);
-    // One symbolic factorization for the harmonic, stretch-energy and Beltrami systems (the
-    // same free vertices and edges).
-    let mut solver = SpdSolver::new();
-    let (initial, _) = harmonic_extension_with(n, &faces, &weights, &fixed, &mut solver)?;
-    let (sem, stretch) = stretch_energy_map_with(&mesh.vertices, &faces, &fixed, &initial, &options.stretch, &mut solver)?;
-    let mu: Vec<[f64; 2]> = beltrami_coefficients(&mesh.vertices, &faces, &sem)
-        .into_iter()
-        .map(|m| scaled_coefficient(m, options.lambda))
-        .collect();
-    let uv = linear_beltrami_solver_with(&mesh.vertices, &faces, &mu, &fixed, &mut solver)?;
-    let flipped_faces = count_flipped(&uv, &faces);
-    Ok(ClosedFlattening { puncture, faces, uv, report: ClosedFlattenReport { stretch, lambda: options.lambda, flipped_faces } })
+    let (uv, report) = stretch_then_beltrami(&mesh.vertices, &faces, &fixed, options)?;
+    Ok(ClosedFlattening { puncture, faces, uv, report })
 }
 
 /// The composite initial map of an open disk: stretch energy minimisation onto the unit disk
@@ -117,15 +105,28 @@ pub fn composite_disk_map(
         return Err(FlattenError::BoundaryTooShort { len: m });
     }
     let fixed = on_circle_by_arc_length(vertices, boundary);
+    stretch_then_beltrami(vertices, faces, &fixed, options)
+}
+
+/// The recipe both [`flatten_closed`] and [`composite_disk_map`] follow once the `fixed`
+/// vertices are placed: harmonic initial map, stretch energy minimisation, then the linear
+/// Beltrami solve with `lambda * mu`. The three systems have the same free vertices and
+/// edges, so they share one symbolic factorization.
+fn stretch_then_beltrami(
+    vertices: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    fixed: &[(u32, [f64; 2])],
+    options: &ClosedFlattenOptions,
+) -> Result<(Vec<[f64; 2]>, ClosedFlattenReport), FlattenError> {
     let weights = cotangent_weights(vertices, faces);
     let mut solver = SpdSolver::new();
-    let (initial, _) = harmonic_extension_with(vertices.len(), faces, &weights, &fixed, &mut solver)?;
-    let (sem, stretch) = stretch_energy_map_with(vertices, faces, &fixed, &initial, &options.stretch, &mut solver)?;
+    let (initial, _) = harmonic_extension_with(vertices.len(), faces, &weights, fixed, &mut solver)?;
+    let (sem, stretch) = stretch_energy_map_with(vertices, faces, fixed, &initial, &options.stretch, &mut solver)?;
     let mu: Vec<[f64; 2]> = beltrami_coefficients(vertices, faces, &sem)
         .into_iter()
         .map(|m| scaled_coefficient(m, options.lambda))
         .collect();
-    let uv = linear_beltrami_solver_with(vertices, faces, &mu, &fixed, &mut solver)?;
+    let uv = linear_beltrami_solver_with(vertices, faces, &mu, fixed, &mut solver)?;
     let flipped_faces = count_flipped(&uv, faces);
     Ok((uv, ClosedFlattenReport { stretch, lambda: options.lambda, flipped_faces }))
 }

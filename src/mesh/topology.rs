@@ -467,3 +467,42 @@ pub fn is_boundary_vertex(mesh: &TriMesh) -> Vec<bool> {
     });
     mask
 }
+
+/// The vertices within `rings` edges of a `marked` one (`marked` grown ring by ring along
+/// the edges of `faces`).
+pub fn within_rings(marked: &[bool], faces: &[[u32; 3]], rings: usize) -> Vec<bool> {
+    let neighbors = neighbors_of_faces(marked.len(), faces);
+    let mut within = marked.to_vec();
+    let mut frontier: Vec<u32> = (0..marked.len()).filter(|&v| marked[v]).map(|v| v as u32).collect();
+    for _ in 0..rings {
+        let mut next = Vec::new();
+        for &v in &frontier {
+            for &u in &neighbors[v as usize] {
+                if !within[u as usize] {
+                    within[u as usize] = true;
+                    next.push(u);
+                }
+            }
+        }
+        frontier = next;
+    }
+    within
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes::grid_disk;
+
+    #[test]
+    fn rings_grow_one_at_a_time() {
+        // grid_disk(n): ring i has 6 i vertices; the rim is ring n.
+        let mesh = grid_disk(10);
+        let rim = is_boundary_vertex(&mesh);
+        let count = |h: &[bool]| h.iter().filter(|x| **x).count();
+        assert_eq!(count(&within_rings(&rim, &mesh.faces, 0)), 60);
+        assert_eq!(count(&within_rings(&rim, &mesh.faces, 1)), 60 + 54);
+        assert_eq!(count(&within_rings(&rim, &mesh.faces, 3)), 60 + 54 + 48 + 42);
+        assert_eq!(count(&within_rings(&rim, &mesh.faces, 20)), mesh.n_vertices());
+    }
+}
