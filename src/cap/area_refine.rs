@@ -9,6 +9,7 @@
 //! `sum_{T at v} d_area(T)^2`, with areas measured on the domain (cap or disk), accepted only
 //! when every incident face stays positively oriented in the plane and the local sum falls.
 //! A fold-free map therefore stays fold-free, and the boundary (fixed vertices) never moves.
+//! The parameterization over-relaxes the steps (nonlinear SOR, [`RefineOptions`]).
 
 use crate::mesh::geometry::{cross, dot, norm, signed_area_2d, sub, triangle_area};
 use rayon::prelude::*;
@@ -24,6 +25,36 @@ pub struct AreaRefineReport {
     pub mean_abs_after: f64,
 }
 
+/// Sweeps of the parameterization's refinement by default.
+pub const DEFAULT_SWEEPS: usize = 30;
+
+/// How many sweeps, and how far each step goes.
+#[derive(Debug, Clone, Copy)]
+pub struct RefineOptions {
+    /// Sweeps at most. Default [`DEFAULT_SWEEPS`].
+    pub sweeps: usize,
+    /// The first trial of each vertex's line search is `omega` times the Gauss-Newton step
+    /// (then halved until the local sum falls). Default 1.3: on the eleven shared meshes
+    /// (2026-11-30) 30 sweeps at 1.3 left the mean |d_area| of 50 plain sweeps (within 3%;
+    /// the bunny 0.0409 -> 0.0370) and the mean |d_angle| within 1%, except the MEG helmet
+    /// (0.0790 -> 0.0829); 48k brain refinement 2.4 -> 1.6 s. At 1.5 the helmet's angles went
+    /// to 0.093 in 25 sweeps, 0.121 in 50. 1 is plain Gauss-Seidel.
+    pub over_relaxation: f64,
+}
+
+impl Default for RefineOptions {
+    fn default() -> Self {
+        Self { sweeps: DEFAULT_SWEEPS, over_relaxation: 1.3 }
+    }
+}
+
+impl RefineOptions {
+    /// `sweeps` of plain (not over-relaxed) Gauss-Seidel.
+    pub fn plain(sweeps: usize) -> Self {
+        Self { sweeps, over_relaxation: 1.0 }
+    }
+}
+
 /// Stop when a sweep lowers `sum d_area^2` by less than this fraction.
 const TOLERANCE: f64 = 1e-4;
 
@@ -32,19 +63,20 @@ const TOLERANCE: f64 = 1e-4;
 /// (the synthetic 100k disk maps at 0.00055; 50 sweeps took 1.5 s to reach 0.00053).
 pub const GOOD_ENOUGH: f64 = 1e-3;
 
-/// Refine the planar positions `plane` of the surface `(vertices, faces)` for `sweeps` sweeps
-/// at most; `lift` maps a planar point to the domain where areas are measured.
+/// Refine the planar positions `plane` of the surface `(vertices, faces)` for
+/// `options.sweeps` sweeps at most; `lift` maps a planar point to the domain where areas are
+/// measured.
 pub fn refine_areas(
     plane: &mut [[f64; 2]],
     vertices: &[[f64; 3]],
     faces: &[[u32; 3]],
     fixed: &[bool],
     lift: &(dyn Fn([f64; 2]) -> [f64; 3] + Sync),
-    sweeps: usize,
+    options: RefineOptions,
 ) -> AreaRefineReport {
     let source: Vec<f64> = faces.iter().map(|f| triangle_area(vertices[f[0] as usize], vertices[f[1] as usize], vertices[f[2] as usize])).collect();
     let mut lifted: Vec<[f64; 3]> = plane.iter().map(|&p| lift(p)).collect();
-    refine_towards(plane, &mut lifted, &source, faces, fixed, lift, sweeps)
+    refine_towards(plane, &mut lifted, &source, faces, fixed, lift, options)
 }
 
 /// The refinement itself: move the free vertices of `plane` so that the areas of the lifted
@@ -58,7 +90,7 @@ pub fn refine_towards(
     faces: &[[u32; 3]],
     fixed: &[bool],
     lift: &(dyn Fn([f64; 2]) -> [f64; 3] + Sync),
-    sweeps: usize,
+    options: RefineOptions,
 ) -> AreaRefineReport {
     let n = plane.len();
     let source = target;
@@ -99,10 +131,10 @@ pub fn refine_towards(
     }
     let colors = color_classes(&incident, faces, fixed);
     let ln_source: Vec<f64> = source.iter().map(|&s| if s > 0.0 { s.ln() } else { f64::NAN }).collect();
-    for sweep in 0..sweeps {
+    for sweep in 0..options.sweeps {
         // log of the target share of each face's image area: d = ln(a) - offset[t].
         let offset_total = total.ln() - source_total.ln();
-        let local = LocalProblem { faces, ln_source: &ln_source, offset: offset_total, orientation, lift };
+        let local = LocalProblem { faces, ln_source: &ln_source, offset: offset_total, orientation, lift, over_relaxation: options.over_relaxation };
         // Vertices of one colour share no face, so their steps are independent: each phase
         // computes them in parallel from the current positions, then applies them. This is
         // Gauss-Seidel in colour order.
@@ -139,6 +171,8 @@ struct LocalProblem<'a> {
     /// +1 or -1: the orientation planar faces must keep.
     orientation: f64,
     lift: &'a (dyn Fn([f64; 2]) -> [f64; 3] + Sync),
+    /// The line search's first trial, in Gauss-Newton steps.
+    over_relaxation: f64,
 }
 
 impl LocalProblem<'_> {
@@ -198,8 +232,9 @@ impl LocalProblem<'_> {
             .collect()
     }
 
-    /// A damped Gauss-Newton step of the free vertex `v` on `sum_{T at v} d_area(T)^2`:
-    /// the new planar and lifted position, or `None` when no step lowers the sum.
+    /// A damped, possibly over-relaxed Gauss-Newton step of the free vertex `v` on
+    /// `sum_{T at v} d_area(T)^2`: the new planar and lifted position, or `None` when no step
+    /// lowers the sum.
     fn step(&self, v: usize, local: &[usize], plane: &[[f64; 2]], lifted: &[[f64; 3]]) -> Option<([f64; 2], [f64; 3])> {
         if local.is_empty() {
             return None;
@@ -227,7 +262,7 @@ impl LocalProblem<'_> {
             return None;
         }
         let step = [-(c * g0 - b * g1) / det, -(a * g1 - b * g0) / det];
-        let mut t = 1.0;
+        let mut t = self.over_relaxation;
         for _ in 0..8 {
             let p = [p0[0] + t * step[0], p0[1] + t * step[1]];
             let lp = (self.lift)(p);
@@ -313,7 +348,7 @@ mod tests {
         let lift = |q: [f64; 2]| inverse_stereographic(q);
         let lifted: Vec<[f64; 3]> = plane.iter().map(|&p| lift(p)).collect();
         let ln_source: Vec<f64> = cap.faces.iter().map(|f| triangle_area(cap.vertices[f[0] as usize], cap.vertices[f[1] as usize], cap.vertices[f[2] as usize]).ln()).collect();
-        let local = LocalProblem { faces: &cap.faces, ln_source: &ln_source, offset: 0.1, orientation: 1.0, lift: &lift };
+        let local = LocalProblem { faces: &cap.faces, ln_source: &ln_source, offset: 0.1, orientation: 1.0, lift: &lift, over_relaxation: 1.0 };
         let mut checked = 0;
         for v in (0..plane.len()).filter(|&v| !fixed[v]).step_by(7) {
             let incident: Vec<usize> = (0..cap.faces.len()).filter(|&t| cap.faces[t].contains(&(v as u32))).collect();
@@ -338,6 +373,35 @@ mod tests {
     }
 
     #[test]
+    fn over_relaxed_sweeps_lower_the_distortion_faster() {
+        // A smooth (low-frequency) area error, the kind the transport leaves on real meshes,
+        // where Gauss-Seidel is slow; the boundary circle stays put.
+        let cap = spherical_cap(0.2, 24, spherical_cap_sectors(0.2, 24));
+        let fixed = is_boundary_vertex(&cap);
+        let mut plane: Vec<[f64; 2]> = cap.vertices.iter().map(|&p| stereographic(p)).collect();
+        let rim = plane.iter().map(|p| p[0].hypot(p[1])).fold(0.0, f64::max);
+        for (v, p) in plane.iter_mut().enumerate() {
+            if !fixed[v] {
+                let r2 = (p[0] * p[0] + p[1] * p[1]) / (rim * rim);
+                let s = 1.0 + 0.3 * (1.0 - r2);
+                *p = [p[0] * s, p[1] * s];
+            }
+        }
+        let lift = |q: [f64; 2]| inverse_stereographic(q);
+        let run = |options: RefineOptions| {
+            let mut q = plane.clone();
+            let rep = refine_areas(&mut q, &cap.vertices, &cap.faces, &fixed, &lift, options);
+            assert!(folded_faces(&q, &cap.faces).is_empty());
+            rep
+        };
+        let plain = run(RefineOptions::plain(10));
+        let over = run(RefineOptions { sweeps: 10, ..Default::default() });
+        assert_eq!(plain.mean_abs_before, over.mean_abs_before);
+        eprintln!("over-relaxed {over:?}\nplain {plain:?}");
+        assert!(over.mean_abs_after < 0.9 * plain.mean_abs_after, "over-relaxed {over:?}, plain {plain:?}");
+    }
+
+    #[test]
     fn perturbed_cap_map_is_restored_without_folds_and_boundary_stays() {
         // The cap's own stereographic image is exactly area preserving (d_area = 0);
         // a deterministic perturbation of the interior, then the refinement.
@@ -354,7 +418,7 @@ mod tests {
         let before = plane.clone();
         assert!(folded_faces(&plane, &cap.faces).is_empty());
         let lift = |q: [f64; 2]| inverse_stereographic(q);
-        let rep = refine_areas(&mut plane, &cap.vertices, &cap.faces, &fixed, &lift, 100);
+        let rep = refine_areas(&mut plane, &cap.vertices, &cap.faces, &fixed, &lift, RefineOptions { sweeps: 100, ..Default::default() });
         assert!(rep.mean_abs_before > 0.02, "perturbation too small: {}", rep.mean_abs_before);
         assert!(rep.mean_abs_after < 0.2 * rep.mean_abs_before, "{rep:?}");
         assert!(folded_faces(&plane, &cap.faces).is_empty());

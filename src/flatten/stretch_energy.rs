@@ -7,27 +7,35 @@
 //! `2 L_S(f) f`, where `L_S(f)` is the Laplacian of the image's cotangent weights scaled by
 //! each face's stretch `|f(T)| / |T|`; on a corner `k` facing edge `ij` that weight is
 //! `(f_i - f_k) . (f_j - f_k) / (4 |T|)`, defined even for folded image faces. The
-//! minimiser is found by the fixed-point iteration `L_S(f^k)_II f^{k+1}_I = -L_S(f^k)_IB f_B`.
+//! minimiser is found by the fixed-point iteration `L_S(f^k)_II f^{k+1}_I = -L_S(f^k)_IB f_B`,
+//! here over-relaxed (ours, [`StretchOptions::over_relaxation`]): the plain iteration's tail
+//! converges slowly (hand: energy ratio 1.0034 after 10 iterations, 1.0028 after 25).
 
 use super::{pin, FlattenError};
 use crate::linalg::{ScatterAssembler, SpdSolver, TripletList};
-use crate::mesh::geometry::{signed_area_2d, triangle_area};
+use crate::mesh::geometry::{folded_faces, signed_area_2d, triangle_area};
 
 /// Options of the stretch energy minimisation.
 #[derive(Debug, Clone)]
 pub struct StretchOptions {
-    /// Maximum fixed-point iterations. Default 25: each costs a sparse factorization, and
-    /// beyond 10-25 iterations the final cap map no longer changes measurably (hand: mean
-    /// |d_area| 0.0295 at 10, 0.0280 at 25, 0.0298 at 100; 12k brain 0.0128 / 0.0128 /
-    /// 0.0127), while 100 iterations took 24 of the hand's 39 seconds.
+    /// Maximum fixed-point iterations. Default 10: each costs a sparse factorization. With
+    /// the over-relaxation below, 10 iterations leave the final cap map as 25 plain ones did
+    /// (measured on the eleven shared meshes, 2026-11-30: mean |d_area| and |d_angle| within
+    /// 2% except the 1.8k bunny, 0.0367 -> 0.0409 before its area refinement ends; hand
+    /// flattening 1.68 -> 0.82 s). 10 plain iterations left the hand at 0.0297 instead of 0.0275.
     pub max_iterations: usize,
     /// Stop when the relative energy decrease falls below this. Default `1e-6`.
     pub tolerance: f64,
+    /// Over-relaxation `omega` of each step: `f + omega (T(f) - f)`, where `T(f)` is the
+    /// fixed-point update, kept when its energy is below the plain step's and it folds no more
+    /// faces. Default 1.8 (the hand's energy ratio reached 1.0028 in 14 iterations against
+    /// 25 plain ones); 1 is the plain iteration of Yueh et al.
+    pub over_relaxation: f64,
 }
 
 impl Default for StretchOptions {
     fn default() -> Self {
-        Self { max_iterations: 25, tolerance: 1e-6 }
+        Self { max_iterations: 10, tolerance: 1e-6, over_relaxation: 1.8 }
     }
 }
 
@@ -36,6 +44,8 @@ impl Default for StretchOptions {
 pub struct StretchReport {
     /// Iterations.
     pub iterations: usize,
+    /// Iterations whose over-relaxed step was kept.
+    pub over_relaxed: usize,
     /// Energy before and after, divided by the minimum `(sum |f(T)|)^2 / sum |T|` (1 is
     /// perfectly equiareal).
     pub initial_energy_ratio: f64,
@@ -157,7 +167,17 @@ pub(crate) fn stretch_energy_map_with(
                 next[v] = [rhs[0][index[v]], rhs[1][index[v]]];
             }
         }
-        let e = stretch_energy(vertices, faces, &next);
+        let mut e = stretch_energy(vertices, faces, &next);
+        if options.over_relaxation != 1.0 {
+            let omega = options.over_relaxation;
+            let over: Vec<[f64; 2]> = f.iter().zip(&next).map(|(a, b)| [a[0] + omega * (b[0] - a[0]), a[1] + omega * (b[1] - a[1])]).collect();
+            let e_over = stretch_energy(vertices, faces, &over);
+            if e_over < e && folded_faces(&over, faces).len() <= folded_faces(&next, faces).len() {
+                next = over;
+                e = e_over;
+                report.over_relaxed += 1;
+            }
+        }
         report.iterations = it + 1;
         if !(e.is_finite()) || e > energy {
             break;

@@ -12,7 +12,7 @@
 //! triangles' orientation, so the result stays an embedding pulled back from the cap.
 
 use super::locate::Locator;
-use crate::cap::area_refine::{refine_towards, AreaRefineReport};
+use crate::cap::area_refine::{refine_towards, AreaRefineReport, RefineOptions};
 use crate::cap::stereographic;
 use crate::mesh::geometry::triangle_area;
 use crate::mesh::TriMesh;
@@ -46,5 +46,5 @@ pub fn equalize_areas(
     let mut q: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
     let target: Vec<f64> = cap.faces.iter().map(|f| triangle_area(cap.vertices[f[0] as usize], cap.vertices[f[1] as usize], cap.vertices[f[2] as usize])).collect();
     let fixed: Vec<bool> = (0..cap.vertices.len()).map(|v| v >= first_fixed).collect();
-    refine_towards(&mut q, out, &target, &cap.faces, &fixed, &lift, sweeps)
+    refine_towards(&mut q, out, &target, &cap.faces, &fixed, &lift, RefineOptions::plain(sweeps))
 }
