@@ -51,3 +51,15 @@ fn face_open() {
 fn brain12k_closed() {
     compare("closed_brain12k_choi.obj.gz", 0.01);
 }
+
+#[test]
+fn hippocampus_closed() {
+    // 6k vertices: the smallest closed mesh the default coarse search applies to.
+    compare("closed_hippocampus_choi.obj.gz", 0.01);
+}
+
+#[test]
+fn left_ventricle_open() {
+    // 4.2k vertices: the smallest open one.
+    compare("open_lv_endo_rabbit_chaste.obj.gz", 0.1);
+}
