@@ -107,6 +107,16 @@ fn newton_reaches_prescribed_masses() {
     }
     assert!(report.mass_error <= 1e-7);
     assert!(report.iterations >= 1);
+    // The iterations integrate masses only; the returned integrals carry every cell's moment,
+    // equal to a full integration at the final weights.
+    let mut tri = RegularTriangulation::delaunay(solver.sites()).unwrap();
+    assert!(tri.update_weights(solver.weights()));
+    let full = integrate(&tri, r, &d);
+    assert_eq!(cells.moment.len(), s.len());
+    for i in 0..s.len() {
+        let (a, b) = (cells.centroid(i).unwrap(), full.centroid(i).unwrap());
+        assert!((a[0] - b[0]).abs() < 1e-12 * r && (a[1] - b[1]).abs() < 1e-12 * r, "cell {i}: {a:?} vs {b:?}");
+    }
     // Warm start at another radius converges in few iterations.
     solver.rescale(1.1);
     let (_, again) = solver.solve(&target, &OtOptions::default(), &NoProgress).unwrap();

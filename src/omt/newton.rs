@@ -22,7 +22,7 @@
 //! rejected trials, ~16 ms each): the full-resolution steps then went from 15 to 26 on the
 //! lung lobe and 9 to 10 on the 48k brain.
 
-use super::cells::{integrate, CellIntegrals};
+use super::cells::{cell_moments, integrate_masses, CellIntegrals};
 use super::density::RadialDensity;
 use super::triangulation::{RegularTriangulation, TriangulationError};
 use crate::linalg::{SolveError, SpdSolver, TripletList};
@@ -169,9 +169,9 @@ impl<'d> OtSolver<'d> {
         self.radius *= s;
     }
 
-    /// Cell integrals at the current weights.
-    pub fn integrals(&self) -> CellIntegrals {
-        integrate(&self.tri, self.radius, self.density)
+    /// Cell masses and Hessian entries at the current weights (no moments).
+    fn integrals(&self) -> CellIntegrals {
+        integrate_masses(&self.tri, self.radius, self.density)
     }
 
     /// Solve for weights whose cells carry the masses `target` (rescaled to sum to the disk's
@@ -201,7 +201,7 @@ impl<'d> OtSolver<'d> {
         let symbolic0 = self.linear.symbolic_count;
         let mut report = OtReport { min_step: 1.0, ..Default::default() };
         let saved = self.tri.clone();
-        let cells = match self.newton(&tau, options, options.max_iterations, &mut report, progress) {
+        let mut cells = match self.newton(&tau, options, options.max_iterations, &mut report, progress) {
             Ok(c) => c,
             Err(NewtonFailure::Cancelled(c)) => return Err(c.into()),
             Err(NewtonFailure::Linear(e)) => return Err(e.into()),
@@ -218,6 +218,8 @@ impl<'d> OtSolver<'d> {
         report.max_cell_error = cells.mass.iter().zip(&tau).map(|(m, t)| (m - t).abs() / t).fold(0.0, f64::max);
         report.flips = self.tri.flips - flips0;
         report.symbolic_factorizations = self.linear.symbolic_count - symbolic0;
+        // The iterations need masses only; the centroids need the moments once, here.
+        cells.moment = cell_moments(&self.tri, self.radius, self.density);
         Ok((cells, report))
     }
 
@@ -294,7 +296,7 @@ impl<'d> OtSolver<'d> {
                 let mut trial = self.tri.clone();
                 let w: Vec<f64> = self.tri.weights.iter().zip(&dw).map(|(w, d)| w + alpha * d).collect();
                 if trial.update_weights(&w) {
-                    let c = integrate(&trial, self.radius, self.density);
+                    let c = integrate_masses(&trial, self.radius, self.density);
                     let e = l1_error(&c.mass, tau) / disk;
                     let min_m = c.mass.iter().cloned().fold(f64::INFINITY, f64::min);
                     if min_m >= eps && e <= (1.0 - 0.5 * alpha) * err {
