@@ -13,9 +13,14 @@
 //! 53k hand at `r*`, 7 of 11 steps are shortened, every time because the flips to the new
 //! weights fail. That is not a weakness of the flips: at the first full step 34809 of the
 //! 53054 sites have no cell at all (checked with qhull on the lifted points), so the
-//! damping is inherent. Two starts were measured and dropped: the coarse level's weights
+//! damping is inherent. Three starts were measured and dropped: the coarse level's weights
 //! interpolated to every site (sites become redundant even at 1/8 of them, see
-//! [`crate::cap::coarse_level`]) and the weights of the radial transport of a uniform site
+//! [`crate::cap::coarse_level`]); weights rebuilt from the coarse centroid map prolonged to
+//! every site, through the Legendre dual `h_i = (|p_i|^2 - w_i) / 2` whose gradient at a
+//! site is its cell's centroid (least squares `h_j - h_i = (p_j - p_i) . (c_i + c_j) / 2`
+//! on the mesh edges; sites redundant on the face, the hand and the 48k brain, and at 1/8
+//! of the weights the hand took 10 steps instead of 11: the vertex areas vary at the fine
+//! scale, which a coarse map cannot see); and the weights of the radial transport of a uniform site
 //! density onto the stereographic one (hand 11 -> 10 iterations, but the 48k brain 9 -> 17:
 //! a punctured closed surface's sites fill a square, not the disk).
 //! Nor does starting each line search at twice the last accepted step (it would skip the
