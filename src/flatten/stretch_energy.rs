@@ -21,8 +21,8 @@ pub struct StretchOptions {
     /// Maximum fixed-point iterations. Default 10: each costs a sparse factorization. With
     /// the over-relaxation below, 10 iterations leave the final cap map as 25 plain ones did
     /// (measured on the eleven shared meshes, 2026-11-30: mean |d_area| and |d_angle| within
-    /// 2% except the 1.8k bunny, 0.0367 -> 0.0409 before its area refinement ends; hand
-    /// flattening 1.68 -> 0.82 s). 10 plain iterations left the hand at 0.0297 instead of 0.0275.
+    /// 2%, except the 1.8k-vertex bunny's mean |d_area|, 0.0367 -> 0.0409; hand flattening
+    /// 1.68 -> 0.82 s). 10 plain iterations left the hand at 0.0297 instead of 0.0275.
     pub max_iterations: usize,
     /// Stop when the relative energy decrease falls below this. Default `1e-6`.
     pub tolerance: f64,

@@ -214,9 +214,11 @@ fn check_finite(x: &[f64], what: &'static str) -> Result<(), SolveError> {
 /// parallel numeric factorizations of matrices with that pattern.
 ///
 /// Measured and dropped (2026-11-30): keeping the last minimum-degree ordering for the next
-/// pattern of the same size (the transport's Newton matrices change by a few flips) reused it
-/// in about half of the analyses but changed no stage time beyond the noise; the ordering is
-/// 3-6% of the profile.
+/// pattern of the same size while its factor stays within 25% of a fresh ordering's. On the
+/// hand's full-resolution transport solve the previous step's ordering gave 2.5 to 5 times
+/// the fill in all but the last two steps (the patterns change much while the steps are
+/// damped), so the analysis (43 ms, of which 31 ms ordering) was redone anyway; no stage time
+/// moved beyond the noise.
 #[derive(Default, Clone)]
 pub struct SpdSolver {
     symbolic: Option<Arc<(Vec<usize>, Vec<usize>, SymbolicCholesky<usize>)>>,
