@@ -30,7 +30,7 @@ def value(mesh, lam, refinement, key="mean_abs_d_area"):
 
 lines = ["# lambda study (closed surfaces)", ""]
 lines.append("Mean |d_area| of the adaptive map for each lambda of the initial flattening (paper: 0.2).")
-lines.append("`refined` is capmesh's default (50 sweeps of face-level area refinement); `paper` is")
+lines.append("`refined` is the default when this was measured (50 plain sweeps of face-level area refinement); `paper` is")
 lines.append("`--area-refinement 0`. Folded faces are 0 in every run unless marked.")
 lines.append("")
 for refinement in refinements:

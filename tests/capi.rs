@@ -318,7 +318,10 @@ fn refinement_equalization_and_puncture_end_options_are_passed_through() {
     let arrays = Arrays::of(&input);
     let (mut out, mut report) = (null_mut(), null_mut());
     let mut o = capmesh_v1_remesh_options_default();
-    assert_eq!((o.param.area_refinement, o.param.puncture_end, o.area_equalization), (50, CAPMESH_V1_PUNCTURE_BEST, 30));
+    assert_eq!(
+        (o.param.area_refinement, o.param.puncture_end, o.area_equalization),
+        (capmesh::cap::parameterize::DEFAULT_AREA_REFINEMENT as u32, CAPMESH_V1_PUNCTURE_BEST, 30)
+    );
     o.faces = 1000;
     o.param.area_refinement = 0;
     o.param.puncture_end = CAPMESH_V1_PUNCTURE_TOP;

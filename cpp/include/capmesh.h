@@ -201,8 +201,8 @@ typedef struct capmesh_v1_param_options {
    */
   double smoothing;
   /**
-   * Sweeps of the face-level area refinement after transport; 0 = the paper's map.
-   * Default 50.
+   * Sweeps of the face-level area refinement after transport (over-relaxed Gauss-Seidel);
+   * 0 = the paper's map. Default 30.
    */
   uint32_t area_refinement;
   /**

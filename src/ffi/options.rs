@@ -44,8 +44,8 @@ pub struct capmesh_v1_param_options {
     /// Centroid-map regularisation strength kappa; negative = automatic choice (default),
     /// 0 = the paper's plain centroid map.
     pub smoothing: f64,
-    /// Sweeps of the face-level area refinement after transport; 0 = the paper's map.
-    /// Default 50.
+    /// Sweeps of the face-level area refinement after transport (over-relaxed Gauss-Seidel);
+    /// 0 = the paper's map. Default 30.
     pub area_refinement: u32,
     /// One of `CAPMESH_V1_PUNCTURE_*` (closed surfaces). Default best (0).
     pub puncture_end: i32,
