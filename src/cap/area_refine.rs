@@ -333,18 +333,25 @@ mod tests {
     use crate::mesh::shapes::{spherical_cap, spherical_cap_sectors};
     use crate::mesh::topology::is_boundary_vertex;
 
+    /// The cap's stereographic image with each free vertex `v` moved by `amplitude` in the
+    /// direction of angle `v * turn` (a deterministic high-frequency jitter).
+    fn jittered_plane(cap: &crate::mesh::TriMesh, fixed: &[bool], turn: f64, amplitude: f64) -> Vec<[f64; 2]> {
+        let mut plane: Vec<[f64; 2]> = cap.vertices.iter().map(|&p| stereographic(p)).collect();
+        for (v, p) in plane.iter_mut().enumerate() {
+            if !fixed[v] {
+                let t = v as f64 * turn;
+                p[0] += amplitude * t.sin();
+                p[1] += amplitude * t.cos();
+            }
+        }
+        plane
+    }
+
     #[test]
     fn residual_jacobian_matches_central_differences() {
         let cap = spherical_cap(-0.3, 8, spherical_cap_sectors(-0.3, 8));
         let fixed = is_boundary_vertex(&cap);
-        let mut plane: Vec<[f64; 2]> = cap.vertices.iter().map(|&p| stereographic(p)).collect();
-        for (v, p) in plane.iter_mut().enumerate() {
-            if !fixed[v] {
-                let t = v as f64 * 1.7;
-                p[0] += 0.02 * t.sin();
-                p[1] += 0.02 * t.cos();
-            }
-        }
+        let plane = jittered_plane(&cap, &fixed, 1.7, 0.02);
         let lift = |q: [f64; 2]| inverse_stereographic(q);
         let lifted: Vec<[f64; 3]> = plane.iter().map(|&p| lift(p)).collect();
         let ln_source: Vec<f64> = cap.faces.iter().map(|f| triangle_area(cap.vertices[f[0] as usize], cap.vertices[f[1] as usize], cap.vertices[f[2] as usize]).ln()).collect();
@@ -407,14 +414,7 @@ mod tests {
         // a deterministic perturbation of the interior, then the refinement.
         let cap = spherical_cap(0.2, 12, spherical_cap_sectors(0.2, 12));
         let fixed = is_boundary_vertex(&cap);
-        let mut plane: Vec<[f64; 2]> = cap.vertices.iter().map(|&p| stereographic(p)).collect();
-        for (v, p) in plane.iter_mut().enumerate() {
-            if !fixed[v] {
-                let t = v as f64 * 2.399;
-                p[0] += 0.01 * t.sin();
-                p[1] += 0.01 * t.cos();
-            }
-        }
+        let mut plane = jittered_plane(&cap, &fixed, 2.399, 0.01);
         let before = plane.clone();
         assert!(folded_faces(&plane, &cap.faces).is_empty());
         let lift = |q: [f64; 2]| inverse_stereographic(q);

@@ -227,10 +227,15 @@ const AUTO_START: usize = 4;
 /// (mean `|d_area|` 1.5 to 2.4) and only the plain map (`kappa = 0`) is good.
 fn walk_grid(evaluate: &(dyn Fn(f64) -> Result<Candidate, SolveError> + Sync)) -> Result<Vec<Candidate>, SolveError> {
     let mut done: Vec<(usize, Candidate)> = Vec::new();
+    // The grid points `indices`, in parallel, added to `done`.
+    let evaluate_all = |indices: &[usize], done: &mut Vec<(usize, Candidate)>| -> Result<(), SolveError> {
+        let batch: Vec<Candidate> = indices.par_iter().map(|&i| evaluate(AUTO_KAPPAS[i])).collect::<Result<_, _>>()?;
+        done.extend(indices.iter().copied().zip(batch));
+        Ok(())
+    };
     let mut next: Vec<usize> = vec![AUTO_START - 1, AUTO_START, AUTO_START + 1];
     while !next.is_empty() {
-        let batch: Vec<Candidate> = next.par_iter().map(|&i| evaluate(AUTO_KAPPAS[i])).collect::<Result<_, _>>()?;
-        done.extend(next.iter().copied().zip(batch));
+        evaluate_all(&next, &mut done)?;
         let Some(best) = best_of(done.iter().map(|(_, c)| c)) else { break };
         let at = done[best].0;
         let seen = |i: usize| done.iter().any(|(j, _)| *j == i);
@@ -245,8 +250,7 @@ fn walk_grid(evaluate: &(dyn Fn(f64) -> Result<Candidate, SolveError> + Sync)) -
     let poor = best_of(done.iter().map(|(_, c)| c)).is_some_and(|b| done[b].1.key.0 || !(done[b].1.key.1 <= WALK_TRUST));
     if poor {
         let rest: Vec<usize> = (0..AUTO_KAPPAS.len()).filter(|i| !done.iter().any(|(j, _)| j == i)).collect();
-        let batch: Vec<Candidate> = rest.par_iter().map(|&i| evaluate(AUTO_KAPPAS[i])).collect::<Result<_, _>>()?;
-        done.extend(rest.into_iter().zip(batch));
+        evaluate_all(&rest, &mut done)?;
     }
     done.sort_by_key(|(i, _)| *i);
     Ok(done.into_iter().map(|(_, c)| c).collect())
