@@ -165,3 +165,22 @@ fn poor_maps_are_reported_on_stderr() {
     assert!(good.status.success());
     assert!(!String::from_utf8_lossy(&good.stderr).contains("warning"), "{}", String::from_utf8_lossy(&good.stderr));
 }
+
+#[test]
+fn closed_standard_output_ends_quietly() {
+    // `capmesh check mesh | head -1`: the reader goes away before capmesh writes (the pipe's
+    // read end is closed while the 53k-vertex mesh is still being read). Writing used to
+    // panic ("failed printing to stdout: Broken pipe").
+    let mut child = capmesh()
+        .arg("check")
+        .arg(data("open_hand_choi.obj.gz"))
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(out.status.success(), "status {:?}, stderr {stderr}", out.status);
+}

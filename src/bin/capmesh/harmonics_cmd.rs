@@ -106,7 +106,7 @@ pub fn run(args: HarmonicsArgs) -> Result<(), String> {
     if let Some(path) = &args.report {
         write_json(path, &report)?;
     }
-    println!(
+    outln!(
         "{}: {} on Z* = {:.4}, order {} ({} functions), {:.2} s",
         input.display(),
         report.param.kind,
@@ -115,11 +115,11 @@ pub fn run(args: HarmonicsArgs) -> Result<(), String> {
         report.basis_functions,
         report.seconds
     );
-    println!("order  mean error  max error   (relative to the bounding-box diagonal)");
+    outln!("order  mean error  max error   (relative to the bounding-box diagonal)");
     for e in &report.errors_by_order {
-        println!("{:5}  {:10.6}  {:9.6}", e.order, e.mean_relative, e.max_relative);
+        outln!("{:5}  {:10.6}  {:9.6}", e.order, e.mean_relative, e.max_relative);
     }
-    println!(
+    outln!(
         "order-1 aspect ratio sigma1/sigma3 {:.4} (exact order-1 ellipsoid {:.4})",
         report.aspect_ratio, report.ellipsoid_aspect_ratio
     );

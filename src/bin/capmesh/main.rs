@@ -1,5 +1,15 @@
 //! The `capmesh` command line: check, param, remesh, metrics, harmonics, shape.
 
+/// `println!` that never panics: when the reader of standard output has gone
+/// (`capmesh check mesh.obj | head -1`) the program ends quietly, like other command-line
+/// tools; another write error becomes the command's error. Use in functions returning
+/// `Result<_, String>`.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::write_line(format_args!($($arg)*))?
+    };
+}
+
 mod cli_progress;
 mod harmonics_cmd;
 mod shape_cmd;
@@ -175,6 +185,17 @@ pub(crate) fn read(path: &Path) -> Result<capmesh::TriMesh, String> {
     io::read_mesh(path).map_err(|e| e.to_string())
 }
 
+/// One line on standard output (see [`outln`]).
+pub(crate) fn write_line(args: std::fmt::Arguments) -> Result<(), String> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_fmt(args).and_then(|()| out.write_all(b"\n")) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(0),
+        Err(e) => Err(format!("cannot write to standard output: {e}")),
+    }
+}
+
 pub(crate) fn refuse_overwrite(input: &Path, output: &Path) -> Result<(), String> {
     if io::same_file(input, output) {
         return Err(format!("refusing to overwrite the input file {}; choose another output path", input.display()));
@@ -205,13 +226,14 @@ fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
     }
 }
 
-fn print_quality(q: &capmesh::metrics::RemeshMetrics) {
-    println!("faces                      {}", q.faces);
-    println!("d_face                     {:.6e}", q.d_face);
-    println!("d_face_relative            {:.4}", q.d_face_relative);
-    println!("d_surface_vertex           {:.6e} ({:.3e} of the diagonal)", q.d_surface_vertex, q.d_surface_vertex_relative);
-    println!("d_surface_sampled          {:.6e} ({:.3e} of the diagonal)", q.d_surface_sampled, q.d_surface_sampled_relative);
-    println!("min_angle_deg              {:.2}", q.min_angle_deg);
+fn print_quality(q: &capmesh::metrics::RemeshMetrics) -> Result<(), String> {
+    outln!("faces                      {}", q.faces);
+    outln!("d_face                     {:.6e}", q.d_face);
+    outln!("d_face_relative            {:.4}", q.d_face_relative);
+    outln!("d_surface_vertex           {:.6e} ({:.3e} of the diagonal)", q.d_surface_vertex, q.d_surface_vertex_relative);
+    outln!("d_surface_sampled          {:.6e} ({:.3e} of the diagonal)", q.d_surface_sampled, q.d_surface_sampled_relative);
+    outln!("min_angle_deg              {:.2}", q.min_angle_deg);
+    Ok(())
 }
 
 fn run(cli: Cli) -> Result<(), String> {
@@ -236,9 +258,9 @@ fn run(cli: Cli) -> Result<(), String> {
             let t_write = std::time::Instant::now();
             io::write_mesh(&output, &out).map_err(|e| e.to_string())?;
             let write_seconds = t_write.elapsed().as_secs_f64();
-            println!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
+            outln!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
             warn_if_poor(&input, &rep.param);
-            print_quality(&rep.quality);
+            print_quality(&rep.quality)?;
             if let Some(path) = report {
                 #[derive(serde::Serialize)]
                 struct Flat<'a> {
@@ -288,9 +310,9 @@ fn run(cli: Cli) -> Result<(), String> {
             let (a, b) = (read(&original)?, read(&remeshed)?);
             let q = capmesh::metrics::remesh_metrics(&a, &b);
             if json {
-                println!("{}", serde_json::to_string_pretty(&q).map_err(|e| e.to_string())?);
+                outln!("{}", serde_json::to_string_pretty(&q).map_err(|e| e.to_string())?);
             } else {
-                print_quality(&q);
+                print_quality(&q)?;
             }
             Ok(())
         }
@@ -298,26 +320,26 @@ fn run(cli: Cli) -> Result<(), String> {
             let m = read(&input)?;
             let summary = mesh::inspect(&m).map_err(|e| format!("{}: {e}", input.display()))?;
             if json {
-                println!("{}", serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?);
+                outln!("{}", serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?);
             } else {
-                println!("file                 {}", input.display());
-                println!("vertices             {}", summary.n_vertices);
-                println!("faces                {}", summary.n_faces);
-                println!("edges                {}", summary.n_edges);
-                println!("boundary loops       {}", summary.boundary_loops);
-                println!("components           {}", summary.n_components);
-                println!("Euler characteristic {}", summary.euler_characteristic);
+                outln!("file                 {}", input.display());
+                outln!("vertices             {}", summary.n_vertices);
+                outln!("faces                {}", summary.n_faces);
+                outln!("edges                {}", summary.n_edges);
+                outln!("boundary loops       {}", summary.boundary_loops);
+                outln!("components           {}", summary.n_components);
+                outln!("Euler characteristic {}", summary.euler_characteristic);
                 if let Some(g) = summary.genus {
-                    println!("genus                {g}");
+                    outln!("genus                {g}");
                 }
-                println!("zero-area faces      {}", summary.zero_area_faces);
-                println!("coincident vertices  {}", summary.coincident_vertex_pairs);
+                outln!("zero-area faces      {}", summary.zero_area_faces);
+                outln!("coincident vertices  {}", summary.coincident_vertex_pairs);
             }
             // The full validation names why the surface cannot be mapped.
             mesh::validate(&m).map_err(|e| format!("{}: {e}", input.display()))?;
             if !json {
                 if let Some(kind) = summary.kind {
-                    println!("surface              {kind}");
+                    outln!("surface              {kind}");
                 }
             }
             Ok(())
@@ -341,7 +363,7 @@ fn run(cli: Cli) -> Result<(), String> {
             bar.finish();
             io::write_mesh(&output, &map.cap_mesh(&m)).map_err(|e| e.to_string())?;
             let r = &map.report;
-            println!(
+            outln!(
                 "{}: {} onto {}: Z* = {}, mean |d_area| = {:.4}, mean |d_angle| = {:.4} rad, flipped faces = {}, {:.2} s",
                 input.display(),
                 r.kind,

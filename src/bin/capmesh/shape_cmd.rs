@@ -80,7 +80,7 @@ pub fn run(args: ShapeArgs) -> Result<(), String> {
     std::fs::write(&args.csv, text).map_err(|e| format!("cannot write {}: {e}", args.csv.display()))?;
 
     let failed: Vec<&Row> = rows.iter().filter(|r| r.result.is_err()).collect();
-    println!(
+    outln!(
         "{} meshes, {} analysed, {} failed; CSV written to {}",
         rows.len(),
         rows.len() - failed.len(),
