@@ -33,8 +33,16 @@ pub fn equalize_areas(
         return AreaRefineReport::default();
     }
     let locator = Locator::new(plane, surface_faces);
+    // The refinement lifts one vertex's points in a row on one thread (its position's
+    // finite-difference neighbours, then its trial steps): each thread tries the triangle of
+    // its last query first.
+    thread_local! {
+        static LAST_FACE: std::cell::Cell<Option<usize>> = const { std::cell::Cell::new(None) };
+    }
     let lift = |q: [f64; 2]| -> [f64; 3] {
-        match locator.locate(q) {
+        let found = locator.locate_near(q, LAST_FACE.with(|c| c.get()));
+        LAST_FACE.with(|c| c.set(found.map(|loc| loc.face)));
+        match found {
             Some(loc) => {
                 let [a, b, c] = surface_faces[loc.face].map(|v| surface.vertices[v as usize]);
                 let w = loc.bary;
