@@ -121,6 +121,11 @@ impl<'a> SurfaceDistance<'a> {
                     let inner_row = ring > 0 && z != lo[2] && z != hi[2] && y != lo[1] && y != hi[1];
                     let xs: &[i64] = if inner_row { &[lo[0], hi[0]] } else { &[] };
                     let mut visit = |x: i64| {
+                        // A cell wholly farther than the best face so far holds nothing
+                        // nearer: the nearest face is found in the cell of its nearest point.
+                        if self.cell_distance([x, y, z], p) >= best {
+                            return;
+                        }
                         if let Some(faces) = self.cells.get(&key(x, y, z)) {
                             for &f in faces {
                                 let t = self.mesh.faces[f as usize].map(|v| self.mesh.vertices[v as usize]);
@@ -148,6 +153,20 @@ impl<'a> SurfaceDistance<'a> {
             }
         }
         best
+    }
+}
+
+impl SurfaceDistance<'_> {
+    /// Distance from `p` to the box of cell `c` (0 inside).
+    #[inline]
+    fn cell_distance(&self, c: [i64; 3], p: [f64; 3]) -> f64 {
+        let mut d2 = 0.0;
+        for k in 0..3 {
+            let lo = self.lo[k] + c[k] as f64 * self.cell;
+            let d = (lo - p[k]).max(0.0).max(p[k] - (lo + self.cell));
+            d2 += d * d;
+        }
+        d2.sqrt()
     }
 }
 
