@@ -274,6 +274,9 @@ fn misuse_returns_errors_with_a_message() {
         p.domain = CAPMESH_V1_DOMAIN_RADIUS;
         p.radius = -1.0;
         expect(capmesh_v1_parameterize(&good, &p, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "radius");
+        // Beyond the adaptive search's range the transport degenerates (refused, not mapped).
+        p.radius = 1000.0;
+        expect(capmesh_v1_parameterize(&good, &p, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "radius = 1000");
         let mut p = capmesh_v1_param_options_default();
         p.lambda = f64::NAN;
         expect(capmesh_v1_parameterize(&good, &p, None, null_mut(), &mut out, null_mut()), CAPMESH_V1_INVALID_ARGUMENT, "lambda");

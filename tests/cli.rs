@@ -184,3 +184,32 @@ fn closed_standard_output_ends_quietly() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(out.status.success(), "status {:?}, stderr {stderr}", out.status);
 }
+
+#[test]
+fn huge_cap_meshes_are_refused_before_any_work() {
+    // An accidental face count used to run until memory ran out.
+    let dir = temp_dir("huge");
+    let input = data("open_meg_helmet_babysquid_mne.obj.gz");
+    for args in [vec!["--faces", "99999999999"], vec!["--lat-long", "--rings", "100000", "--sectors", "100000"]] {
+        let out = capmesh().args(["remesh", "--quiet"]).arg(&input).arg("-o").arg(dir.join("huge.ply")).args(&args).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} accepted");
+        assert!(stderr.contains("more than capmesh remeshes") && stderr.contains("50000000"), "{args:?}: {stderr}");
+        assert!(!dir.join("huge.ply").exists());
+    }
+}
+
+#[test]
+fn fixed_radii_outside_the_search_range_are_refused() {
+    // radius=1000 used to give ten folded faces and mean |d_area| 0.58 without a word.
+    let dir = temp_dir("radius");
+    let input = data("open_meg_helmet_babysquid_mne.obj.gz");
+    for r in ["1000", "0.001", "1e6"] {
+        let out = capmesh().args(["param", "--quiet"]).arg(&input).arg("-o").arg(dir.join("r.ply")).arg("--domain").arg(format!("radius={r}")).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "radius={r} accepted");
+        assert!(stderr.contains("outside [0.05, 20]"), "radius={r}: {stderr}");
+    }
+    let ok = capmesh().args(["param", "--quiet"]).arg(&input).arg("-o").arg(dir.join("r.ply")).args(["--domain", "radius=2"]).output().unwrap();
+    assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
+}

@@ -188,7 +188,8 @@ typedef struct capmesh_v1_param_options {
    */
   int32_t domain;
   /**
-   * Disk radius for `CAPMESH_V1_DOMAIN_RADIUS`, finite and > 0; ignored otherwise. Default 1.
+   * Disk radius for `CAPMESH_V1_DOMAIN_RADIUS`, in [0.05, 20] (the adaptive search's range,
+   * cap `Z*` from 0.995 down to -0.995); ignored otherwise. Default 1.
    */
   double radius;
   /**

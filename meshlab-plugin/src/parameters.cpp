@@ -39,7 +39,8 @@ void addParamOptions(RichParameterList& list, const capmesh_v1_param_options& d)
 	list.addParam(RichFloat(
 		"Radius", Scalarm(d.radius), "Disk radius (fixed-radius domain)",
 		"Only for the 'Cap of fixed radius' domain: the planar disk of this radius is mapped onto "
-		"the cap Z >= (1 - r^2) / (1 + r^2) of the unit sphere (r = 1 is the hemisphere)."));
+		"the cap Z >= (1 - r^2) / (1 + r^2) of the unit sphere (r = 1 is the hemisphere); r in "
+		"[0.05, 20], the range of the adaptive search."));
 	list.addParam(RichFloat(
 		"Lambda", Scalarm(d.lambda), "Quasi-conformal factor (closed surfaces)",
 		"Closed surfaces: the stretch-energy map of the punctured surface is composed with the "

@@ -316,6 +316,7 @@ impl CapMap {
 
 /// Parameterize an open disk-like or closed genus-0 `mesh` onto the domain of `options`.
 pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+    options.domain.check().map_err(Error::InvalidOption)?;
     let at = |other_end: bool| {
         let mut o = options.clone();
         o.closed.puncture.other_end = other_end;

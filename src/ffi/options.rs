@@ -37,7 +37,8 @@ pub const CAPMESH_V1_GRID_LAT_LONG: i32 = 1;
 pub struct capmesh_v1_param_options {
     /// One of `CAPMESH_V1_DOMAIN_*`. Default adaptive (0).
     pub domain: i32,
-    /// Disk radius for `CAPMESH_V1_DOMAIN_RADIUS`, finite and > 0; ignored otherwise. Default 1.
+    /// Disk radius for `CAPMESH_V1_DOMAIN_RADIUS`, in [0.05, 20] (the adaptive search's range,
+    /// cap `Z*` from 0.995 down to -0.995); ignored otherwise. Default 1.
     pub radius: f64,
     /// Quasi-conformal factor of closed surfaces, in [0, 1]. Default 0.2.
     pub lambda: f64,
@@ -114,9 +115,7 @@ pub(crate) fn param_options(o: &capmesh_v1_param_options) -> Result<ParamOptions
         CAPMESH_V1_DOMAIN_SPHERE => Domain::Sphere,
         CAPMESH_V1_DOMAIN_RADIUS => {
             let r = finite("radius", o.radius)?;
-            if r <= 0.0 {
-                return Err(Failure::invalid_argument(format!("radius = {r} must be > 0 for the fixed-radius domain")));
-            }
+            Domain::Radius(r).check().map_err(Failure::invalid_argument)?;
             Domain::Radius(r)
         }
         d => {

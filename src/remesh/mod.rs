@@ -37,6 +37,22 @@ impl Default for CapGrid {
     }
 }
 
+/// Most cap faces a remesh may ask for: 50 million faces (25 million vertices, several GiB
+/// with the metrics' index) is far beyond any anatomical remesh, and an accidental huge count
+/// would otherwise run until memory is exhausted.
+pub const MAX_GRID_FACES: u64 = 50_000_000;
+
+impl CapGrid {
+    /// About how many faces the cap mesh has (the lat/long grid: a fan and two triangles per
+    /// quad), saturating instead of overflowing.
+    pub fn approximate_faces(&self) -> u64 {
+        match *self {
+            CapGrid::Uniform { faces } => faces as u64,
+            CapGrid::LatLong { rings, sectors } => (sectors as u64).saturating_mul((2 * rings as u64).saturating_sub(1)),
+        }
+    }
+}
+
 /// Options of [`remesh`].
 #[derive(Debug, Clone)]
 pub struct RemeshOptions {
@@ -82,6 +98,11 @@ pub struct RemeshReport {
 /// pulled back onto the punctured quad).
 pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport), Error> {
     let start = Instant::now();
+    // Refused before the parameterization, which would be wasted.
+    let asked = options.grid.approximate_faces();
+    if asked > MAX_GRID_FACES {
+        return Err(Error::InvalidOption(format!("a cap mesh of about {asked} faces is more than capmesh remeshes (at most {MAX_GRID_FACES}); ask for fewer faces, rings or sectors")));
+    }
     let map = parameterize(mesh, &options.param, progress)?;
     let closed = map.report.kind != SurfaceKind::OpenDisk.to_string();
     let z_star = map.report.z_star.ok_or_else(|| Error::InvalidOption("remeshing needs a spherical cap domain, not the planar disk".into()))?;
