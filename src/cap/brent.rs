@@ -11,17 +11,18 @@ pub fn minimize<E>(f: impl FnMut(f64) -> Result<f64, E>, a: f64, b: f64, xtol: f
 /// bracket around the best point `x` is within `xtol(x)`. A search over a transformed
 /// variable uses it to keep its tolerance in the original one.
 ///
-/// Ours on top of Brent's method, when `bound_probe` is set: a *bound probe*. Brent's method reaches a minimum at a bound
-/// only by steps that shrink geometrically towards it (the closed surfaces' radius search,
-/// whose energy falls all the way to `Z* = -0.995`, spent 6-7 of its 10-11 solves creeping
-/// there). When two successive improvements have moved towards a bound that is still an end
-/// of the bracket and the parabola through the last three points has no minimum inside the
-/// bracket away from that bound, or three have, the points one and two tolerances inside the bound are
-/// evaluated; for a unimodal function the second settles the search when the first is the
-/// best point. A failed probe only narrows the bracket, and is not repeated, but it costs an
-/// evaluation far from the minimum (and, in the radius search, a warm start from there): on
-/// the open surfaces' interior minima it fired and missed (hand: 37 -> 49 search
-/// iterations, LV endocardium 32 -> 45), so only the closed surfaces' search uses it.
+/// Ours on top of Brent's method, when `bound_probe` is set: a *bound probe*. Brent's method
+/// reaches a minimum at a bound only by steps that shrink geometrically towards it (the
+/// closed surfaces' radius search, whose energy falls all the way to `Z* = -0.995`, spent 6-7
+/// of its 10-11 solves creeping there). When two successive improvements have moved towards
+/// a bound that is still an end of the bracket and the parabola through the last three
+/// points has no minimum inside the bracket away from that bound (or three improvements
+/// have), the points one and two tolerances inside the bound are evaluated; for a unimodal
+/// function the second settles the search when the first is the best point. A failed probe
+/// only narrows the bracket, and is not repeated, but it costs an evaluation far from the
+/// minimum (and, in the radius search, a warm start from there): on the open surfaces'
+/// interior minima it fired and missed (hand: 37 -> 49 search iterations, LV endocardium
+/// 32 -> 45), so only the closed surfaces' search uses it.
 pub fn minimize_with_tolerance<E>(
     mut f: impl FnMut(f64) -> Result<f64, E>,
     a: f64,

@@ -21,6 +21,9 @@ pub struct Location {
 /// Triangles per leaf at most.
 const LEAF: usize = 8;
 
+/// Smallest barycentric coordinate of a point for [`Locator::locate_near`] to take its hint.
+const HINT_MARGIN: f64 = 1e-9;
+
 /// A node: its box, and either two children (`count == 0`, children at `first` and
 /// `first + 1`) or `count` triangles `order[first..first + count]`.
 #[derive(Debug, Clone, Copy)]
@@ -110,14 +113,20 @@ impl<'a> Locator<'a> {
 
     /// [`Locator::locate`], trying the triangle `hint` first (a query near the last one
     /// usually falls in the same triangle: the area equalization lifts a vertex's position,
-    /// its finite-difference neighbours and its trial steps one after the other).
+    /// its finite-difference neighbours and its trial steps one after the other). The hint is
+    /// taken only when `p` is inside it by a margin ([`HINT_MARGIN`] in barycentric
+    /// coordinates), where no other triangle of an embedding contains it, so the answer is
+    /// the one [`Locator::locate`] gives whatever the hint: results do not depend on which
+    /// thread lifted what before.
     pub fn locate_near(&self, p: [f64; 2], hint: Option<usize>) -> Option<Location> {
         if self.faces.is_empty() || !(p[0].is_finite() && p[1].is_finite()) {
             return None;
         }
         if let Some(f) = hint.filter(|&f| f < self.faces.len()) {
-            if let Some(loc) = self.inside(f, p) {
-                return Some(loc);
+            let bary = self.barycentric(f, p);
+            if bary.iter().all(|&b| b >= HINT_MARGIN) {
+                let s: f64 = bary.iter().sum();
+                return Some(Location { face: f, bary: bary.map(|b| b / s) });
             }
         }
         // Containing triangle: visit every node whose box holds p (with a margin for points
@@ -208,8 +217,9 @@ impl<'a> Locator<'a> {
 }
 
 /// The depth-first stack of a query, on the call stack (with a heap vector per query,
-/// allocation was 8% of the MEG helmet's remesh profile). The hierarchy's median splits keep its depth below
-/// `log2(triangles)`, and a descent holds at most one pending sibling per level.
+/// allocation was 8% of the MEG helmet's remesh profile). The hierarchy's median splits keep
+/// its depth below `log2(triangles)` (at most 32), and a descent holds at most one pending
+/// sibling per level.
 struct NodeStack {
     items: [u32; 128],
     len: usize,
@@ -268,9 +278,10 @@ mod tests {
             let hint = (i % 2 == 1).then(|| (rand() * cap.faces.len() as f64) as usize);
             let loc = locator.locate_near(p, hint).expect("non-empty mesh");
             if let Some(h) = hint {
-                if locator.barycentric(h, p).iter().all(|&b| b >= -1e-12) {
+                if locator.barycentric(h, p).iter().all(|&b| b >= HINT_MARGIN) {
                     assert_eq!(loc.face, h, "a containing hint is taken");
                 }
+                assert_eq!(Some(loc), locator.locate(p), "the hint changed the answer");
             }
             let brute = (0..cap.faces.len()).map(|f| locator.nearest_in(f, p).0).fold(f64::INFINITY, f64::min);
             let contained = (0..cap.faces.len()).any(|f| locator.barycentric(f, p).iter().all(|&b| b >= -1e-12));
