@@ -55,8 +55,8 @@ pub struct ParamOptions {
     /// Relative mass tolerance of the transport solves inside the radius search; the map at
     /// `r*` is then solved to `transport.tolerance`, warm, when that is tighter (by default
     /// they are equal and a full-resolution search's map at `r*` is kept as it is). Each
-    /// search step saves about one
-    /// Newton iteration (hand: 39 instead of 45 in all) and `Z*` does not move. Looser is
+    /// search step saves about one Newton iteration (hand: 39 instead of 45 in all) and `Z*`
+    /// does not move. Looser is
     /// faster but not safe: at `1e-2` the hand needs 26 iterations, while the 48k brain's
     /// search stops at `Z* = -0.991` instead of the bound and its mean `|d_area|` goes from
     /// 0.013 to 0.40. Default `1e-5`.

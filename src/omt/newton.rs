@@ -11,9 +11,9 @@
 //!
 //! A cold solve (Voronoi start) of a large mesh spends most of its iterations damped: on the
 //! 53k hand at `r*`, 7 of 11 steps (of 10 at the parameterization's tolerance) are
-//! shortened, every time because the flips to the new weights fail. That is not a weakness of the flips: at the first full step 34809 of the
-//! 53054 sites have no cell at all (checked with qhull on the lifted points), so the
-//! damping is inherent. Three starts were measured and dropped: the coarse level's weights
+//! shortened, every time because the flips to the new weights fail. That is not a weakness
+//! of the flips: at the first full step 34809 of the 53054 sites have no cell at all (checked
+//! with qhull on the lifted points), so the damping is inherent. Three starts were measured and dropped: the coarse level's weights
 //! interpolated to every site (sites become redundant even at 1/8 of them, see
 //! [`crate::cap::coarse_level`]); weights rebuilt from the coarse centroid map prolonged to
 //! every site, through the Legendre dual `h_i = (|p_i|^2 - w_i) / 2` whose gradient at a
