@@ -2,6 +2,7 @@
 //! symbolic factorization for reuse.
 
 pub mod laplacian;
+pub mod nested_dissection;
 pub mod sparse;
 
 pub use laplacian::{cotangent_weights, CotanWeights};

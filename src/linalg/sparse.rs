@@ -10,7 +10,9 @@ use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbol
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::perm::PermRef;
 use faer::{Conj, Mat, Par, Side};
+use super::nested_dissection::nested_dissection;
 use std::sync::Arc;
 
 /// Errors of the sparse direct solvers.
@@ -220,7 +222,10 @@ fn check_finite(x: &[f64], what: &'static str) -> Result<(), SolveError> {
 /// damped), so the analysis (43 ms, of which 31 ms ordering) was redone anyway; no stage time
 /// moved beyond the noise. A nested dissection by breadth-first level structures (George
 /// 1973, leaves of 16) matched the minimum-degree fill on a regular grid but gave 1.3-1.6
-/// times its factor on the hand's matrices, and took longer to compute.
+/// times its factor on the hand's matrices, and took longer to compute. A geometric one on
+/// known positions ([`SpdSolver::set_positions`], [`super::nested_dissection`]) is cheap
+/// enough to pay on the large transport systems (see
+/// [`crate::omt::newton::NESTED_DISSECTION_SITES`]).
 #[derive(Default, Clone)]
 pub struct SpdSolver {
     symbolic: Option<Arc<(Vec<usize>, Vec<usize>, SymbolicCholesky<usize>)>>,
@@ -228,12 +233,23 @@ pub struct SpdSolver {
     factored: bool,
     /// How many symbolic factorizations were computed (for reports and tests).
     pub symbolic_count: usize,
+    /// Positions of the unknowns in the plane, when known: the symbolic factorization then
+    /// orders by geometric nested dissection ([`super::nested_dissection`]) instead of AMD.
+    positions: Option<Arc<Vec<[f64; 2]>>>,
 }
 
 impl SpdSolver {
     /// A solver with nothing factored yet.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Order later systems by geometric nested dissection on these planar positions of their
+    /// unknowns (a system of another size keeps AMD); the next factorization analyses anew.
+    pub fn set_positions(&mut self, positions: Vec<[f64; 2]>) {
+        self.positions = Some(Arc::new(positions));
+        self.symbolic = None;
+        self.factored = false;
     }
 
     /// Factor `a` (both triangles stored); reuses the symbolic part when the pattern matches.
@@ -259,7 +275,19 @@ impl SpdSolver {
         self.factored = false;
         let s = a.symbolic();
         let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL, ..Default::default() };
-        let sym = factorize_symbolic_cholesky(s, Side::Lower, SymmetricOrdering::Amd, params)
+        let permutation = self.positions.as_ref().filter(|p| p.len() == s.nrows()).map(|p| {
+            let order = nested_dissection(p, s.col_ptr(), s.row_idx());
+            let mut inverse = vec![0usize; order.len()];
+            for (k, &v) in order.iter().enumerate() {
+                inverse[v] = k;
+            }
+            (order, inverse)
+        });
+        let ordering = match &permutation {
+            Some((forward, inverse)) => SymmetricOrdering::Custom(PermRef::new_checked(forward, inverse, forward.len())),
+            None => SymmetricOrdering::Amd,
+        };
+        let sym = factorize_symbolic_cholesky(s, Side::Lower, ordering, params)
             .map_err(|e| SolveError::Backend { what, message: format!("{e:?}") })?;
         self.symbolic = Some(Arc::new((s.col_ptr().to_vec(), s.row_idx().to_vec(), sym)));
         self.symbolic_count += 1;
@@ -405,5 +433,51 @@ mod tests {
         let mut bad = TripletList::new(2);
         bad.push(2, 0, 1.0);
         assert!(assembler.assemble(&bad, "test").is_err());
+    }
+
+    #[test]
+    fn nested_dissection_ordering_solves_like_minimum_degree() {
+        // A weighted grid Laplacian plus a diagonal shift (SPD), m x m unknowns at grid points.
+        let m = 60;
+        let id = |i: usize, j: usize| i * m + j;
+        let mut t = TripletList::new(m * m);
+        let mut state = 7u64;
+        for i in 0..m {
+            for j in 0..m {
+                t.push(id(i, j), id(i, j), 0.1);
+                for (a, b) in [(i + 1, j), (i, j + 1)] {
+                    if a < m && b < m {
+                        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                        let w = 0.5 + (state >> 40) as f64 / (1u64 << 24) as f64;
+                        for (p, q) in [(id(i, j), id(a, b)), (id(a, b), id(i, j))] {
+                            t.push(p, p, w);
+                            t.push(p, q, -w);
+                        }
+                    }
+                }
+            }
+        }
+        let a = t.assemble("test").unwrap();
+        let rhs: Vec<f64> = (0..m * m).map(|k| ((k * 37) % 11) as f64 - 5.0).collect();
+        let solve = |solver: &mut SpdSolver| {
+            solver.factor(&a, "test").unwrap();
+            let mut x = vec![rhs.clone()];
+            solver.solve_in_place(&mut x, "test").unwrap();
+            x.remove(0)
+        };
+        let mut amd = SpdSolver::new();
+        let x_amd = solve(&mut amd);
+        let mut nd = SpdSolver::new();
+        nd.set_positions((0..m * m).map(|k| [(k / m) as f64, (k % m) as f64]).collect());
+        let x_nd = solve(&mut nd);
+        let scale = x_amd.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+        for (p, q) in x_amd.iter().zip(&x_nd) {
+            assert!((p - q).abs() <= 1e-10 * scale, "{p} vs {q}");
+        }
+        // New positions drop the analysis: the next factorization analyses anew.
+        nd.set_positions((0..m * m).map(|k| [(k % m) as f64, (k / m) as f64]).collect());
+        let before = nd.symbolic_count;
+        solve(&mut nd);
+        assert_eq!(nd.symbolic_count, before + 1);
     }
 }
