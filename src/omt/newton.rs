@@ -133,7 +133,8 @@ const MOVING_PATTERN: f64 = 0.02;
 /// (flips), so the ordering is computed every step, and AMD's was as long as the numeric
 /// factorization. Transport, one run each (2026-11-30): hand 2.08 -> 1.80 s, 41k ellipsoid
 /// 1.53 -> 1.25 s, 101k disk 1.19 -> 1.00 s, 1M disk 16.6 -> 12.4 s (peak memory 3.27 ->
-/// 3.08 GB); below 20k sites no difference beyond the noise (lung 0.74 -> 0.68 s, face 0.27
+/// 3.08 GB); the maps move within the transport tolerance's reach (hand mean |d_area|
+/// 0.0273 -> 0.0277, 48k brain unchanged); below 20k sites no difference beyond the noise (lung 0.74 -> 0.68 s, face 0.27
 /// -> 0.30 s), so the small systems keep AMD. The flattening keeps AMD: ordered by the
 /// vertices' 3D positions the 48k brain's flattening went from 0.76 to 1.44 s (a folded
 /// surface), by the harmonic map's planar positions the hand's from 0.87 to 1.2-1.3 s.
