@@ -404,7 +404,6 @@ mod tests {
         let plain = run(RefineOptions::plain(10));
         let over = run(RefineOptions { sweeps: 10, ..Default::default() });
         assert_eq!(plain.mean_abs_before, over.mean_abs_before);
-        eprintln!("over-relaxed {over:?}\nplain {plain:?}");
         assert!(over.mean_abs_after < 0.9 * plain.mean_abs_after, "over-relaxed {over:?}, plain {plain:?}");
     }
 

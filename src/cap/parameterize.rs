@@ -56,10 +56,9 @@ pub struct ParamOptions {
     /// `r*` is then solved to `transport.tolerance`, warm, when that is tighter (by default
     /// they are equal and a full-resolution search's map at `r*` is kept as it is). Each
     /// search step saves about one Newton iteration (hand: 39 instead of 45 in all) and `Z*`
-    /// does not move. Looser is
-    /// faster but not safe: at `1e-2` the hand needs 26 iterations, while the 48k brain's
-    /// search stops at `Z* = -0.991` instead of the bound and its mean `|d_area|` goes from
-    /// 0.013 to 0.40. Default `1e-5`.
+    /// does not move. Looser is faster but not safe: at `1e-2` the hand needs 26 iterations,
+    /// while the 48k brain's search stops at `Z* = -0.991` instead of the bound and its mean
+    /// `|d_area|` goes from 0.013 to 0.40. Default [`MASS_TOLERANCE`] (`1e-5`).
     pub search_tolerance: f64,
     /// Transport sites of the radius search. A mesh with more than twice as many vertices
     /// searches on a coarse level of at most `max(search_sites, n / SEARCH_RATIO)` sites
@@ -97,7 +96,7 @@ impl Default for ParamOptions {
             z_tolerance: 1e-3,
             max_search_evaluations: 30,
             transport: OtOptions::default().with_tolerance(MASS_TOLERANCE),
-            search_tolerance: 1e-5,
+            search_tolerance: MASS_TOLERANCE,
             search_sites: DEFAULT_SEARCH_SITES,
             flatten: DiskConformalOptions::default(),
             closed: ClosedFlattenOptions::default(),

@@ -259,12 +259,19 @@ pub fn integrate(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity
 /// The first moments of every cell (what [`integrate`] adds to [`integrate_masses`]).
 pub fn cell_moments(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity) -> Vec<[f64; 2]> {
     let (centers, far) = centers_and_far(tri, r);
+    per_clipped_cell(tri, &centers, far, r, |pieces, full| cell_moment(pieces, full, r, density))
+}
+
+/// `f` of every site's power cell (from the triangles' power `centers` and the far length of
+/// [`centers_and_far`]) clipped to the disk of radius `r`: its pieces and whether it covers
+/// the whole disk. In parallel.
+fn per_clipped_cell<T: Send>(tri: &RegularTriangulation, centers: &[[f64; 2]], far: f64, r: f64, f: impl Fn(&[Piece], bool) -> T + Sync) -> Vec<T> {
     (0..tri.sites.len())
         .into_par_iter()
         .map(|i| {
-            let (pts, labels) = dual_polygon(tri, &centers, i, far);
+            let (pts, labels) = dual_polygon(tri, centers, i, far);
             let (pieces, full) = clip_to_disk(&pts, &labels, r);
-            cell_moment(&pieces, full, r, density)
+            f(&pieces, full)
         })
         .collect()
 }
@@ -275,14 +282,7 @@ pub fn cell_moments(tri: &RegularTriangulation, r: f64, density: &dyn RadialDens
 /// 0.38 s (one run each; the hand, whose time is in its factorizations, did not move).
 pub fn integrate_masses(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity) -> CellIntegrals {
     let (centers, far) = centers_and_far(tri, r);
-    let mass: Vec<f64> = (0..tri.sites.len())
-        .into_par_iter()
-        .map(|i| {
-            let (pts, labels) = dual_polygon(tri, &centers, i, far);
-            let (pieces, full) = clip_to_disk(&pts, &labels, r);
-            cell_mass(&pieces, full, r, density)
-        })
-        .collect();
+    let mass = per_clipped_cell(tri, &centers, far, r, |pieces, full| cell_mass(pieces, full, r, density));
     let edges: Vec<(u32, u32, f64)> = (0..tri.triangles.len())
         .into_par_iter()
         .flat_map_iter(|t| {

@@ -13,15 +13,15 @@
 //! 53k hand at `r*`, 7 of 11 steps (of 10 at the parameterization's tolerance) are
 //! shortened, every time because the flips to the new weights fail. That is not a weakness
 //! of the flips: at the first full step 34809 of the 53054 sites have no cell at all (checked
-//! with qhull on the lifted points), so the damping is inherent. Three starts were measured and dropped: the coarse level's weights
-//! interpolated to every site (sites become redundant even at 1/8 of them, see
-//! [`crate::cap::coarse_level`]); weights rebuilt from the coarse centroid map prolonged to
-//! every site, through the Legendre dual `h_i = (|p_i|^2 - w_i) / 2` whose gradient at a
-//! site is its cell's centroid (least squares `h_j - h_i = (p_j - p_i) . (c_i + c_j) / 2`
-//! on the mesh edges; sites redundant on the face, the hand and the 48k brain, and at 1/8
-//! of the weights the hand took 10 steps instead of 11: the vertex areas vary at the fine
-//! scale, which a coarse map cannot see); and the weights of the radial transport of a uniform site
-//! density onto the stereographic one (hand 11 -> 10 iterations, but the 48k brain 9 -> 17:
+//! with qhull on the lifted points), so the damping is inherent. Three starts were measured
+//! and dropped: the coarse level's weights interpolated to every site (sites become
+//! redundant even at 1/8 of them, see [`crate::cap::coarse_level`]); weights rebuilt from the
+//! coarse centroid map prolonged to every site, through the Legendre dual
+//! `h_i = (|p_i|^2 - w_i) / 2` whose gradient at a site is its cell's centroid (least squares
+//! `h_j - h_i = (p_j - p_i) . (c_i + c_j) / 2` on the mesh edges; sites redundant on the face,
+//! the hand and the 48k brain, and at 1/8 of the weights the hand took 10 steps instead of
+//! 11: the vertex areas vary at the fine scale, which a coarse map cannot see); and the
+//! weights of the radial transport of a uniform site density onto the stereographic one (hand 11 -> 10 iterations, but the 48k brain 9 -> 17:
 //! a punctured closed surface's sites fill a square, not the disk).
 //! Nor does starting each line search at twice the last accepted step (it would skip the
 //! rejected trials, ~16 ms each): the full-resolution steps then went from 15 to 26 on the
@@ -134,8 +134,8 @@ const MOVING_PATTERN: f64 = 0.02;
 /// factorization. Transport, one run each (2026-11-30): hand 2.08 -> 1.80 s, 41k ellipsoid
 /// 1.53 -> 1.25 s, 101k disk 1.19 -> 1.00 s, 1M disk 16.6 -> 12.4 s (peak memory 3.27 ->
 /// 3.08 GB); the maps move within the transport tolerance's reach (hand mean |d_area|
-/// 0.0273 -> 0.0277, 48k brain unchanged); below 20k sites no difference beyond the noise (lung 0.74 -> 0.68 s, face 0.27
-/// -> 0.30 s), so the small systems keep AMD. The flattening keeps AMD: ordered by the
+/// 0.0273 -> 0.0277, 48k brain unchanged); below 20k sites no difference beyond the noise
+/// (lung 0.74 -> 0.68 s, face 0.27 -> 0.30 s), so the small systems keep AMD. The flattening keeps AMD: ordered by the
 /// vertices' 3D positions the 48k brain's flattening went from 0.76 to 1.44 s (a folded
 /// surface), by the harmonic map's planar positions the hand's from 0.87 to 1.2-1.3 s.
 pub const NESTED_DISSECTION_SITES: usize = 20_000;

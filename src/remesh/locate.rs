@@ -24,6 +24,10 @@ const LEAF: usize = 8;
 /// Smallest barycentric coordinate of a point for [`Locator::locate_near`] to take its hint.
 const HINT_MARGIN: f64 = 1e-9;
 
+/// How far outside a triangle, in barycentric coordinates, a point still counts as inside
+/// (rounding on shared edges).
+const CONTAINMENT_TOLERANCE: f64 = 1e-12;
+
 /// A node: its box, and either two children (`count == 0`, children at `first` and
 /// `first + 1`) or `count` triangles `order[first..first + count]`.
 #[derive(Debug, Clone, Copy)]
@@ -122,12 +126,8 @@ impl<'a> Locator<'a> {
         if self.faces.is_empty() || !(p[0].is_finite() && p[1].is_finite()) {
             return None;
         }
-        if let Some(f) = hint.filter(|&f| f < self.faces.len()) {
-            let bary = self.barycentric(f, p);
-            if bary.iter().all(|&b| b >= HINT_MARGIN) {
-                let s: f64 = bary.iter().sum();
-                return Some(Location { face: f, bary: bary.map(|b| b / s) });
-            }
+        if let Some(loc) = hint.filter(|&f| f < self.faces.len()).and_then(|f| self.inside(f, p, HINT_MARGIN)) {
+            return Some(loc);
         }
         // Containing triangle: visit every node whose box holds p (with a margin for points
         // on an edge shared by two boxes).
@@ -144,7 +144,7 @@ impl<'a> Locator<'a> {
                 continue;
             }
             for &f in &self.order[node.first as usize..(node.first + node.count) as usize] {
-                if let Some(loc) = self.inside(f as usize, p) {
+                if let Some(loc) = self.inside(f as usize, p, -CONTAINMENT_TOLERANCE) {
                     return Some(loc);
                 }
             }
@@ -180,10 +180,11 @@ impl<'a> Locator<'a> {
         best.map(|(_, l)| l)
     }
 
-    /// `p`'s location in triangle `f` when `f` contains it (up to rounding).
-    fn inside(&self, f: usize, p: [f64; 2]) -> Option<Location> {
+    /// `p`'s location in triangle `f` when every barycentric coordinate is at least `margin`
+    /// (negative: containment up to rounding).
+    fn inside(&self, f: usize, p: [f64; 2], margin: f64) -> Option<Location> {
         let bary = self.barycentric(f, p);
-        if bary.iter().all(|&b| b >= -1e-12) {
+        if bary.iter().all(|&b| b >= margin) {
             let s: f64 = bary.iter().map(|b| b.max(0.0)).sum();
             return Some(Location { face: f, bary: bary.map(|b| b.max(0.0) / s) });
         }
