@@ -5,7 +5,9 @@
 //! The unknowns are split at the median along the longest side of their bounding box; the
 //! smaller of the two one-sided separators (the vertices of one half with a neighbour in the
 //! other) is eliminated after both halves, which are ordered the same way recursively down to
-//! leaves of [`LEAF`] unknowns. On the planar transport sites the separators are curves of
+//! leaves of [`LEAF`] unknowns. The splits depend on the positions only, so they are computed
+//! once ([`Dissection`]) and each pattern only picks its separators; the halves are ordered
+//! in parallel. On the planar transport sites the separators are curves of
 //! about `sqrt(n)` unknowns (positions in any dimension work, but on a folded surface's 3D
 //! positions the cuts are long: see [`crate::omt::newton::NESTED_DISSECTION_SITES`]).
 //!
@@ -15,76 +17,165 @@
 //! 78 ms a Newton step); on the 101k synthetic disk the factor is smaller (5.9M against 6.4M
 //! entries) and a step 106 ms instead of 151 ms. Leaves of 8 gave the least fill (3.52M on
 //! the hand; 16: 3.55M, 64: 3.64M, 128: 3.92M); one-sided separators always on the first
-//! half gave 3.64M-3.71M.
+//! half gave 3.64M-3.71M. Splitting at the medians of all the positions, once, instead of
+//! at the medians of what each separator leaves (2026-11-30, hand): ordering 15 -> 6-7 ms a
+//! Newton step, factors 3.52M-3.73M entries against 3.51M-3.79M.
 
 /// Unknowns per leaf at most (eliminated in the order they come).
 pub const LEAF: usize = 8;
 
+/// Parts of more unknowns than this are split on two threads (rayon): below it the
+/// work is shorter than handing it over.
+const PARALLEL_PART: usize = 4096;
+
 /// The elimination order of the `n = points.len()` unknowns (positions in `D` dimensions) of
 /// a symmetric pattern given by its columns (`col_ptr`, `row_idx`, either or both
 /// triangles): `order[k]` is the unknown eliminated `k`-th. Row indices `>= n` are ignored.
+/// One call of [`Dissection::new`] then [`Dissection::order`].
 pub fn nested_dissection<const D: usize>(points: &[[f64; D]], col_ptr: &[usize], row_idx: &[usize]) -> Vec<usize> {
-    let n = points.len();
-    let mut order = Vec::with_capacity(n);
-    // side[v]: 0 outside the part being split, 1 first half, 2 second half.
-    let mut side = vec![0u8; n];
-    let neighbours = |v: usize| row_idx.get(col_ptr[v]..col_ptr[v + 1]).unwrap_or(&[]);
-    let mut tasks = vec![Task::Split((0..n).collect())];
-    while let Some(task) = tasks.pop() {
-        let mut part = match task {
-            Task::Emit(separator) => {
-                order.extend(separator);
-                continue;
-            }
-            Task::Split(part) => part,
-        };
-        if part.len() <= LEAF {
-            order.extend(part);
-            continue;
-        }
-        let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
-        for &v in &part {
-            for k in 0..D {
-                lo[k] = lo[k].min(points[v][k]);
-                hi[k] = hi[k].max(points[v][k]);
-            }
-        }
-        let axis = (0..D).fold(0, |best, k| if hi[k] - lo[k] > hi[best] - lo[best] { k } else { best });
-        let mid = part.len() / 2;
-        part.select_nth_unstable_by(mid, |&a, &b| points[a][axis].total_cmp(&points[b][axis]).then(a.cmp(&b)));
-        let (first, second) = part.split_at(mid);
-        for &v in first {
-            side[v] = 1;
-        }
-        for &v in second {
-            side[v] = 2;
-        }
-        // The vertices of `from` with a neighbour on side `other`, and the rest.
-        let split = |from: &[usize], other: u8| -> (Vec<usize>, Vec<usize>) {
-            from.iter().partition(|&&v| !neighbours(v).iter().any(|&u| u < n && side[u] == other))
-        };
-        let (first_rest, first_separator) = split(first, 2);
-        let (second_rest, second_separator) = split(second, 1);
-        for &v in &part {
-            side[v] = 0;
-        }
-        let (a, b, separator) = if first_separator.len() <= second_separator.len() {
-            (first_rest, second.to_vec(), first_separator)
-        } else {
-            (first.to_vec(), second_rest, second_separator)
-        };
-        // Popped in reverse: the first half, the second, then the separator.
-        tasks.push(Task::Emit(separator));
-        tasks.push(Task::Split(b));
-        tasks.push(Task::Split(a));
-    }
-    order
+    Dissection::new(points).order(col_ptr, row_idx)
 }
 
-/// Work of [`nested_dissection`]: a part to split, or a separator to eliminate.
-enum Task {
-    Split(Vec<usize>),
-    Emit(Vec<usize>),
+/// The geometric half of a nested dissection, computed once for fixed positions: the
+/// points in an order where every part (a range of it, starting with the whole) is split
+/// at its middle into the halves below and above the median along the longest side of the
+/// part's bounding box, recursively down to [`LEAF`] points. [`Dissection::order`] then only
+/// looks at a pattern's edges to find each split's separator; the transport's Newton
+/// matrices change pattern every step but their sites never move (hand: the ordering took
+/// 15 ms a step with the median splits redone on the parts left by the separators, 6-7 ms with
+/// them fixed here).
+#[derive(Debug, Clone)]
+pub struct Dissection {
+    /// `points_in_order[k]`: the point at position `k` of the split order.
+    points_in_order: Vec<usize>,
+    /// The inverse: `rank[v]` is the position of point `v`.
+    rank: Vec<usize>,
+}
+
+impl Dissection {
+    /// The split order of `points`.
+    pub fn new<const D: usize>(points: &[[f64; D]]) -> Self {
+        let n = points.len();
+        let mut points_in_order: Vec<usize> = (0..n).collect();
+        split_points(points, &mut points_in_order);
+        let mut rank = vec![0; n];
+        for (k, &v) in points_in_order.iter().enumerate() {
+            rank[v] = k;
+        }
+        Self { points_in_order, rank }
+    }
+
+    /// Number of unknowns.
+    pub fn len(&self) -> usize {
+        self.rank.len()
+    }
+
+    /// Whether there are no unknowns.
+    pub fn is_empty(&self) -> bool {
+        self.rank.is_empty()
+    }
+
+    /// The elimination order for the pattern (`col_ptr`, `row_idx`) of `self.len()`
+    /// unknowns: at each split the smaller of the two one-sided separators (the unknowns of
+    /// one half, not in an earlier separator, with such a neighbour in the other half) is
+    /// eliminated after both halves, which are ordered the same way.
+    pub fn order(&self, col_ptr: &[usize], row_idx: &[usize]) -> Vec<usize> {
+        let n = self.len();
+        let mut taken = vec![false; n];
+        let mut order = vec![0; n];
+        let pattern = Pattern { col_ptr, row_idx };
+        self.dissect(&pattern, 0, &mut taken, &mut order);
+        order
+    }
+
+    /// Order the part at positions `lo..lo + taken.len()`; `taken` marks its unknowns already
+    /// in a separator, `out` receives the others (as many as it is long).
+    fn dissect(&self, pattern: &Pattern, lo: usize, taken: &mut [bool], out: &mut [usize]) {
+        let len = taken.len();
+        let at = |k: usize| self.points_in_order[lo + k];
+        if len <= LEAF {
+            let live = (0..len).filter(|&k| !taken[k]).map(at);
+            for (slot, v) in out.iter_mut().zip(live) {
+                *slot = v;
+            }
+            return;
+        }
+        let mid = len / 2;
+        // Unknowns of positions `from` (in the part) with a live neighbour in `other`.
+        let separator = |from: std::ops::Range<usize>, other: std::ops::Range<usize>, taken: &[bool]| -> Vec<usize> {
+            from.filter(|&k| {
+                !taken[k]
+                    && pattern.neighbours(at(k)).iter().any(|&u| {
+                        let r = self.rank.get(u).map_or(usize::MAX, |&r| r.wrapping_sub(lo));
+                        other.contains(&r) && !taken[r]
+                    })
+            })
+            .collect()
+        };
+        let first = separator(0..mid, mid..len, taken);
+        let second = separator(mid..len, 0..mid, taken);
+        let chosen = if first.len() <= second.len() { first } else { second };
+        for &k in &chosen {
+            taken[k] = true;
+        }
+        let live_first = taken[..mid].iter().filter(|&&t| !t).count();
+        let live_second = taken[mid..].iter().filter(|&&t| !t).count();
+        let (out_first, rest) = out.split_at_mut(live_first);
+        let (out_second, out_separator) = rest.split_at_mut(live_second);
+        for (slot, &k) in out_separator.iter_mut().zip(&chosen) {
+            *slot = at(k);
+        }
+        let (taken_first, taken_second) = taken.split_at_mut(mid);
+        if len > PARALLEL_PART {
+            rayon::join(
+                || self.dissect(pattern, lo, taken_first, out_first),
+                || self.dissect(pattern, lo + mid, taken_second, out_second),
+            );
+        } else {
+            self.dissect(pattern, lo, taken_first, out_first);
+            self.dissect(pattern, lo + mid, taken_second, out_second);
+        }
+    }
+}
+
+/// A pattern's columns.
+struct Pattern<'a> {
+    col_ptr: &'a [usize],
+    row_idx: &'a [usize],
+}
+
+impl Pattern<'_> {
+    fn neighbours(&self, v: usize) -> &[usize] {
+        match (self.col_ptr.get(v), self.col_ptr.get(v + 1)) {
+            (Some(&a), Some(&b)) => self.row_idx.get(a..b).unwrap_or(&[]),
+            _ => &[],
+        }
+    }
+}
+
+/// Reorder `part` (point indices) so that its halves are the points below and above the
+/// median along the longest side of its bounding box, each half reordered the same way.
+fn split_points<const D: usize>(points: &[[f64; D]], part: &mut [usize]) {
+    if part.len() <= LEAF {
+        return;
+    }
+    let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
+    for &v in part.iter() {
+        for k in 0..D {
+            lo[k] = lo[k].min(points[v][k]);
+            hi[k] = hi[k].max(points[v][k]);
+        }
+    }
+    let axis = (0..D).fold(0, |best, k| if hi[k] - lo[k] > hi[best] - lo[best] { k } else { best });
+    let mid = part.len() / 2;
+    part.select_nth_unstable_by(mid, |&a, &b| points[a][axis].total_cmp(&points[b][axis]).then(a.cmp(&b)));
+    let (first, second) = part.split_at_mut(mid);
+    if first.len() + second.len() > PARALLEL_PART {
+        rayon::join(|| split_points(points, first), || split_points(points, second));
+    } else {
+        split_points(points, first);
+        split_points(points, second);
+    }
 }
 
 #[cfg(test)]

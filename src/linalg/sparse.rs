@@ -12,7 +12,7 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, Symbolic
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::perm::PermRef;
 use faer::{Conj, Mat, Par, Side};
-use super::nested_dissection::nested_dissection;
+use super::nested_dissection::Dissection;
 use std::sync::Arc;
 
 /// Errors of the sparse direct solvers.
@@ -235,7 +235,7 @@ pub struct SpdSolver {
     pub symbolic_count: usize,
     /// Positions of the unknowns in the plane, when known: the symbolic factorization then
     /// orders by geometric nested dissection ([`super::nested_dissection`]) instead of AMD.
-    positions: Option<Arc<Vec<[f64; 2]>>>,
+    dissection: Option<Arc<Dissection>>,
 }
 
 impl SpdSolver {
@@ -247,7 +247,7 @@ impl SpdSolver {
     /// Order later systems by geometric nested dissection on these planar positions of their
     /// unknowns (a system of another size keeps AMD); the next factorization analyses anew.
     pub fn set_positions(&mut self, positions: Vec<[f64; 2]>) {
-        self.positions = Some(Arc::new(positions));
+        self.dissection = Some(Arc::new(Dissection::new(&positions)));
         self.symbolic = None;
         self.factored = false;
     }
@@ -275,8 +275,8 @@ impl SpdSolver {
         self.factored = false;
         let s = a.symbolic();
         let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL, ..Default::default() };
-        let permutation = self.positions.as_ref().filter(|p| p.len() == s.nrows()).map(|p| {
-            let order = nested_dissection(p, s.col_ptr(), s.row_idx());
+        let permutation = self.dissection.as_ref().filter(|d| d.len() == s.nrows()).map(|d| {
+            let order = d.order(s.col_ptr(), s.row_idx());
             let mut inverse = vec![0usize; order.len()];
             for (k, &v) in order.iter().enumerate() {
                 inverse[v] = k;

@@ -92,14 +92,15 @@ pub enum Piece {
     },
 }
 
-/// The dual polygon of site `i` (counter-clockwise vertices with the neighbour label of the
-/// edge that starts at each vertex). Hull sites get unbounded cells closed by far points.
-pub fn dual_polygon(tri: &RegularTriangulation, centers: &[[f64; 2]], i: usize, far: f64) -> (Vec<[f64; 2]>, Vec<u32>) {
+/// The dual polygon of site `i` into `pts` and `labels` (cleared first): counter-clockwise
+/// vertices with the neighbour label of the edge that starts at each vertex. Hull sites get
+/// unbounded cells closed by far points.
+pub fn dual_polygon(tri: &RegularTriangulation, centers: &[[f64; 2]], i: usize, far: f64, pts: &mut Vec<[f64; 2]>, labels: &mut Vec<u32>) {
+    pts.clear();
+    labels.clear();
     let t0 = tri.vertex_triangle[i];
-    let mut pts = Vec::with_capacity(8);
-    let mut labels = Vec::with_capacity(8);
     if t0 == NONE {
-        return (pts, labels);
+        return;
     }
     let corner = |t: usize| tri.triangles[t].iter().position(|&v| v as usize == i).unwrap_or(0);
     // Rotate clockwise to the hull, if the site is on it.
@@ -151,7 +152,6 @@ pub fn dual_polygon(tri: &RegularTriangulation, centers: &[[f64; 2]], i: usize, 
         }
         t = next as usize;
     }
-    (pts, labels)
 }
 
 fn unit(v: [f64; 2]) -> [f64; 2] {
@@ -163,12 +163,16 @@ fn unit(v: [f64; 2]) -> [f64; 2] {
     }
 }
 
-/// Clip a convex counter-clockwise polygon to the disk of radius `r` and return its boundary
-/// pieces. An empty result means the cell misses the disk, unless `full` is true (the disk
-/// lies entirely inside the polygon).
-pub fn clip_to_disk(pts: &[[f64; 2]], labels: &[u32], r: f64) -> (Vec<Piece>, bool) {
+/// The clipped segments of a polygon: `(start, end, label, enters, exits)`.
+pub type ClippedSegment = ([f64; 2], [f64; 2], u32, bool, bool);
+
+/// Clip a convex counter-clockwise polygon to the disk of radius `r`: its boundary pieces
+/// into `pieces` (cleared first; `segs` is scratch). Returns whether the disk lies entirely
+/// inside the polygon: no pieces and `false` means the cell misses the disk.
+pub fn clip_to_disk(pts: &[[f64; 2]], labels: &[u32], r: f64, segs: &mut Vec<ClippedSegment>, pieces: &mut Vec<Piece>) -> bool {
     let n = pts.len();
-    let mut segs: Vec<([f64; 2], [f64; 2], u32, bool, bool)> = Vec::with_capacity(n);
+    segs.clear();
+    pieces.clear();
     for k in 0..n {
         if let Some((a, b, enters, exits)) = clip_segment(pts[k], pts[(k + 1) % n], r) {
             segs.push((a, b, labels[k], enters, exits));
@@ -181,9 +185,8 @@ pub fn clip_to_disk(pts: &[[f64; 2]], labels: &[u32], r: f64) -> (Vec<Piece>, bo
                 let (a, b) = (pts[k], pts[(k + 1) % n]);
                 (b[0] - a[0]) * (-a[1]) - (b[1] - a[1]) * (-a[0]) >= 0.0
             });
-        return (Vec::new(), full);
+        return full;
     }
-    let mut pieces = Vec::with_capacity(segs.len() * 2);
     let m = segs.len();
     for k in 0..m {
         let (a, b, label, _, exits) = segs[k];
@@ -201,7 +204,7 @@ pub fn clip_to_disk(pts: &[[f64; 2]], labels: &[u32], r: f64) -> (Vec<Piece>, bo
             }
         }
     }
-    (pieces, false)
+    false
 }
 
 /// Mass and first moment of a clipped cell.
@@ -264,16 +267,26 @@ pub fn cell_moments(tri: &RegularTriangulation, r: f64, density: &dyn RadialDens
 
 /// `f` of every site's power cell (from the triangles' power `centers` and the far length of
 /// [`centers_and_far`]) clipped to the disk of radius `r`: its pieces and whether it covers
-/// the whole disk. In parallel.
+/// the whole disk. In parallel, each worker with its own scratch buffers (four allocations
+/// per cell otherwise).
 fn per_clipped_cell<T: Send>(tri: &RegularTriangulation, centers: &[[f64; 2]], far: f64, r: f64, f: impl Fn(&[Piece], bool) -> T + Sync) -> Vec<T> {
     (0..tri.sites.len())
         .into_par_iter()
-        .map(|i| {
-            let (pts, labels) = dual_polygon(tri, centers, i, far);
-            let (pieces, full) = clip_to_disk(&pts, &labels, r);
-            f(&pieces, full)
+        .map_init(CellScratch::default, |s, i| {
+            dual_polygon(tri, centers, i, far, &mut s.pts, &mut s.labels);
+            let full = clip_to_disk(&s.pts, &s.labels, r, &mut s.segs, &mut s.pieces);
+            f(&s.pieces, full)
         })
         .collect()
+}
+
+/// Buffers of one cell's polygon and pieces, reused from cell to cell.
+#[derive(Default)]
+struct CellScratch {
+    pts: Vec<[f64; 2]>,
+    labels: Vec<u32>,
+    segs: Vec<ClippedSegment>,
+    pieces: Vec<Piece>,
 }
 
 /// Masses and Hessian entries only (`moment` left empty): what each Newton iteration needs.

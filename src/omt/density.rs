@@ -132,8 +132,7 @@ impl RadialDensity for StereographicDensity {
         // int 2 rho^2 / (1 + rho^2) d theta = [2 d / q atan(s / q)] with q = sqrt(1 + d^2).
         let Some((d, sa, sb, sign)) = line_frame(a, b) else { return 0.0 };
         let q = (1.0 + d * d).sqrt();
-        let g = |s: f64| (s / q).atan();
-        sign * 2.0 * d / q * (g(sb) - g(sa))
+        sign * 2.0 * d / q * atan_difference(sb / q, sa / q)
     }
 
     fn segment_integral(&self, a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -141,9 +140,16 @@ impl RadialDensity for StereographicDensity {
         let Some((d, sa, sb, _)) = line_frame(a, b) else { return 0.0 };
         let q2 = 1.0 + d * d;
         let q = q2.sqrt();
-        let prim = |s: f64| s / (2.0 * q2 * (q2 + s * s)) + (s / q).atan() / (2.0 * q2 * q);
-        4.0 * (prim(sb) - prim(sa))
+        let rational = |s: f64| s / (2.0 * q2 * (q2 + s * s));
+        4.0 * (rational(sb) - rational(sa) + atan_difference(sb / q, sa / q) / (2.0 * q2 * q))
     }
+}
+
+/// `atan(x) - atan(y)` by one `atan2` (the difference of two angles in `(-pi/2, pi/2)` is
+/// the angle of `(x - y, 1 + x y)`): half the arctangents of the cell integrals, which were
+/// a tenth of a parameterization's time, and no cancellation for nearby `x` and `y`.
+fn atan_difference(x: f64, y: f64) -> f64 {
+    (x - y).atan2(1.0 + x * y)
 }
 
 /// The uniform density `1` (the planar disk OMT baseline of Zhao et al. 2013).
@@ -216,6 +222,21 @@ mod tests {
             // Orientation: reversing the edge flips the sign.
             assert!((d.fan_mass(b, a) + d.fan_mass(a, b)).abs() < 1e-14);
         }
+    }
+
+    #[test]
+    fn atan_difference_is_the_difference_of_arctangents() {
+        // Both signs of 1 + x y (the difference beyond pi/2 when x y < -1), far and near.
+        let values: [f64; 11] = [-1e8, -50.0, -3.0, -1.0, -0.2, 0.0, 1e-9, 0.7, 2.5, 40.0, 1e7];
+        for &x in &values {
+            for &y in &values {
+                let exact = x.atan() - y.atan();
+                assert!((atan_difference(x, y) - exact).abs() < 1e-14, "{x} {y}: {} vs {exact}", atan_difference(x, y));
+            }
+        }
+        // Nearby arguments: the difference keeps its relative accuracy.
+        let (x, y) = (0.3 + 1e-12, 0.3);
+        assert!((atan_difference(x, y) / (1e-12 / 1.09) - 1.0).abs() < 1e-3);
     }
 
     #[test]
