@@ -86,7 +86,7 @@ fn over_relaxed_stretch_iteration_needs_fewer_iterations() {
     let (uv, _) = disk_conformal_map(&mesh.vertices, &mesh.faces, &topo.boundary_loops[0], &DiskConformalOptions::default()).unwrap();
     let fixed: Vec<(u32, [f64; 2])> = topo.boundary_loops[0].iter().map(|&b| (b, uv[b as usize])).collect();
     let run = |over_relaxation: f64, max_iterations: usize| {
-        let options = StretchOptions { max_iterations, tolerance: 0.0, over_relaxation };
+        let options = StretchOptions { max_iterations, tolerance: 0.0, over_relaxation, ..StretchOptions::default() };
         stretch_energy_map(&mesh.vertices, &mesh.faces, &fixed, &uv, &options).unwrap()
     };
     // The over-relaxed iteration must get lower in 10 iterations than the plain one in 15.
@@ -104,4 +104,39 @@ fn over_relaxed_stretch_iteration_needs_fewer_iterations() {
         plain_report.final_energy_ratio
     );
     assert!(stretch_energy(&mesh.vertices, &mesh.faces, &over) < stretch_energy(&mesh.vertices, &mesh.faces, &plain));
+}
+
+#[test]
+fn stretch_steps_with_a_reused_factorization_reach_the_same_energy() {
+    // The hippocampal sheet (7k vertices), boundary on the circle by arc length as in the
+    // open surfaces' composite map, from the harmonic map: every iteration factoring its own
+    // matrix against only the first 3 (the later steps solve with the third's factorization).
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/open_hippocampus_sheet_hippunfold.obj.gz");
+    let raw = read_mesh(&path).unwrap_or_else(|e| panic!("{e}"));
+    // Welded as the pipeline does (coincident vertices make zero-area faces).
+    let mesh = capmesh::mesh::repair::weld_coincident(&raw, 1e-9 * raw.bounding_box_diagonal()).mesh;
+    let (_, topo) = validate(&mesh).unwrap();
+    let fixed = capmesh::flatten::closed::on_circle_by_arc_length(&mesh.vertices, &topo.boundary_loops[0]);
+    let weights = capmesh::linalg::cotangent_weights(&mesh.vertices, &mesh.faces);
+    let (initial, _) = capmesh::flatten::harmonic::harmonic_extension(mesh.vertices.len(), &mesh.faces, &weights, &fixed).unwrap();
+    let run = |factored_iterations: usize| {
+        let options = StretchOptions { tolerance: 0.0, factored_iterations, ..StretchOptions::default() };
+        stretch_energy_map(&mesh.vertices, &mesh.faces, &fixed, &initial, &options).unwrap()
+    };
+    let (every, every_report) = run(usize::MAX);
+    let (reused, reused_report) = run(3);
+    eprintln!("every {every_report:?}\nreused {reused_report:?}");
+    assert_eq!(every_report.reused_factorizations, 0);
+    assert!(reused_report.reused_factorizations >= 4, "{reused_report:?}");
+    assert_eq!(every_report.iterations, reused_report.iterations);
+    // Both remove most of the start's excess over the equiareal minimum (ratio 1), and end
+    // within 0.1% of each other.
+    for r in [&every_report, &reused_report] {
+        assert!(r.final_energy_ratio - 1.0 < 0.05 * (r.initial_energy_ratio - 1.0), "{r:?}");
+    }
+    let (a, b) = (stretch_energy(&mesh.vertices, &mesh.faces, &every), stretch_energy(&mesh.vertices, &mesh.faces, &reused));
+    assert!((a - b).abs() < 1e-3 * a, "every iteration factored {a}, reused {b}");
+    let folds = (folded_faces(&every, &mesh.faces).len(), folded_faces(&reused, &mesh.faces).len());
+    eprintln!("folded faces: every {} reused {}", folds.0, folds.1);
+    assert!(folds.1 <= folds.0, "folded faces: every iteration factored {}, reused {}", folds.0, folds.1);
 }
