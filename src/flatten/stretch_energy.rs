@@ -9,7 +9,10 @@
 //! `(f_i - f_k) . (f_j - f_k) / (4 |T|)`, defined even for folded image faces. The
 //! minimiser is found by the fixed-point iteration `L_S(f^k)_II f^{k+1}_I = -L_S(f^k)_IB f_B`,
 //! here over-relaxed (ours, [`StretchOptions::over_relaxation`]): the plain iteration's tail
-//! converges slowly (hand: energy ratio 1.0034 after 10 iterations, 1.0028 after 25).
+//! converges slowly (hand: energy ratio 1.0034 after 10 iterations, 1.0028 after 25). Later
+//! iterations may solve with an earlier iteration's factorization (ours,
+//! [`StretchOptions::factored_iterations`]): the same step, `f - L_S(f)^-1 L_S(f) f`, with
+//! an older `L_S`, at two triangular solves instead of a factorization.
 
 use super::{pin, FlattenError};
 use crate::linalg::{ScatterAssembler, SpdSolver, TripletList};
@@ -34,11 +37,11 @@ pub struct StretchOptions {
     /// Iterations that factor their own matrix `L_S(f)`; each later one solves for the step
     /// `f - L_S(f)^-1 (L_S(f) f)` (the exact iteration, written with the energy's gradient
     /// `L_S(f) f`) with the last factorization instead, and factors its own only when that
-    /// step does not lower the energy or folds faces. Default `usize::MAX` (every iteration factors: the
-    /// closed surfaces' punctured maps, far from converged after 10 iterations, lost with
-    /// stale matrices: with 3, the bunny's final mean |d_area| 0.037 -> 0.042, the 48k
-    /// brain's energy ratio 5.5 -> 6.3); the open
-    /// surfaces' maps use [`crate::cap::ParamOptions::open_factored_iterations`].
+    /// step does not lower the energy or folds faces. Default `usize::MAX` (every iteration
+    /// factors: the closed surfaces' punctured maps, far from converged after 10
+    /// iterations, lost with stale matrices: with 3, the bunny's final mean |d_area| 0.037
+    /// -> 0.042, the 48k brain's energy ratio 5.5 -> 6.3); the open surfaces' maps use
+    /// [`crate::cap::ParamOptions::open_factored_iterations`].
     pub factored_iterations: usize,
 }
 
@@ -145,7 +148,7 @@ pub(crate) fn stretch_energy_map_with(
     let mut energy = stretch_energy(vertices, faces, &f);
     let mut assembler = ScatterAssembler::new();
     // Whether `solver` holds a factorization of an earlier iteration's matrix, and whether
-    // this iteration must factor its own (a stale step that did not lower the energy).
+    // this iteration must factor its own (its stale step went uphill or folded faces).
     let (mut factored, mut fresh) = (false, false);
     let mut it = 0;
     while it < options.max_iterations {
