@@ -13,7 +13,7 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 
 /// The sparsity pattern of a symmetric `n x n` matrix: every diagonal entry and both
 /// `(i, j)` and `(j, i)` for each edge `i < j`.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct GraphPattern {
     n: usize,
     col_ptr: Vec<usize>,
@@ -63,11 +63,6 @@ impl GraphPattern {
             next[i] += 1;
         }
         Ok(Self { n, col_ptr, row_idx })
-    }
-
-    /// Number of unknowns.
-    pub fn dim(&self) -> usize {
-        self.n
     }
 
     /// The matrix with `diagonal[c]` at `(c, c)` and, for each `(i, j, v)` of `off_diagonal`

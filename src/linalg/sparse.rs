@@ -233,8 +233,9 @@ pub struct SpdSolver {
     factored: bool,
     /// How many symbolic factorizations were computed (for reports and tests).
     pub symbolic_count: usize,
-    /// Positions of the unknowns in the plane, when known: the symbolic factorization then
-    /// orders by geometric nested dissection ([`super::nested_dissection`]) instead of AMD.
+    /// The geometric dissection of the unknowns' planar positions, when known: the symbolic
+    /// factorization then orders by nested dissection ([`super::nested_dissection`]) instead
+    /// of AMD.
     dissection: Option<Arc<Dissection>>,
 }
 

@@ -21,8 +21,9 @@
 //! `h_j - h_i = (p_j - p_i) . (c_i + c_j) / 2` on the mesh edges; sites redundant on the face,
 //! the hand and the 48k brain, and at 1/8 of the weights the hand took 10 steps instead of
 //! 11: the vertex areas vary at the fine scale, which a coarse map cannot see); and the
-//! weights of the radial transport of a uniform site density onto the stereographic one (hand 11 -> 10 iterations, but the 48k brain 9 -> 17:
-//! a punctured closed surface's sites fill a square, not the disk).
+//! weights of the radial transport of a uniform site density onto the stereographic one
+//! (hand 11 -> 10 iterations, but the 48k brain 9 -> 17: a punctured closed surface's sites
+//! fill a square, not the disk).
 //! Nor does starting each line search at twice the last accepted step (it would skip the
 //! rejected trials, ~16 ms each): the full-resolution steps then went from 15 to 26 on the
 //! lung lobe and 9 to 10 on the 48k brain.
@@ -135,9 +136,11 @@ const MOVING_PATTERN: f64 = 0.02;
 /// 1.53 -> 1.25 s, 101k disk 1.19 -> 1.00 s, 1M disk 16.6 -> 12.4 s (peak memory 3.27 ->
 /// 3.08 GB); the maps move within the transport tolerance's reach (hand mean |d_area|
 /// 0.0273 -> 0.0277, 48k brain unchanged); below 20k sites no difference beyond the noise
-/// (lung 0.74 -> 0.68 s, face 0.27 -> 0.30 s), so the small systems keep AMD. The flattening keeps AMD: ordered by the
-/// vertices' 3D positions the 48k brain's flattening went from 0.76 to 1.44 s (a folded
-/// surface), by the harmonic map's planar positions the hand's from 0.87 to 1.2-1.3 s.
+/// (lung 0.74 -> 0.68 s, face 0.27 -> 0.30 s; again with the splits computed once per
+/// solver: seven shared meshes unchanged), so the small systems keep AMD. The flattening
+/// keeps AMD: ordered by the vertices' 3D positions the 48k brain's flattening went from
+/// 0.76 to 1.44 s (a folded surface), by the harmonic map's planar positions the hand's from
+/// 0.87 to 1.2-1.3 s.
 pub const NESTED_DISSECTION_SITES: usize = 20_000;
 
 /// A semi-discrete transport solver for fixed sites on the disk of radius `r`; it keeps its
@@ -150,7 +153,7 @@ pub struct OtSolver<'d> {
     /// Off-diagonal pattern `(i << 32) | j`, `0 < i < j`, of the Newton matrices (sorted):
     /// a superset of the current triangulation's edges (see [`OtSolver::update_pattern`]).
     pattern: Vec<u64>,
-    /// The Newton matrices' layout on [`OtSolver::pattern`] (rebuilt when it changes).
+    /// The Newton matrices' layout on [`OtSolver::pattern`] (rebuilt with it).
     hessian_pattern: GraphPattern,
 }
 
@@ -166,7 +169,8 @@ impl<'d> OtSolver<'d> {
             // Unknowns are the sites but the pinned first one.
             linear.set_positions(sites.iter().skip(1).copied().collect());
         }
-        Ok(Self { tri, radius, density, linear, pattern: Vec::new(), hessian_pattern: GraphPattern::default() })
+        let hessian_pattern = GraphPattern::new(sites.len().saturating_sub(1), &[], "transport Hessian")?;
+        Ok(Self { tri, radius, density, linear, pattern: Vec::new(), hessian_pattern })
     }
 
     /// The current radius.
@@ -354,7 +358,8 @@ impl<'d> OtSolver<'d> {
         }
     }
 
-    /// Keep [`OtSolver::pattern`] a superset of the current Hessian's off-diagonal pattern.
+    /// Keep [`OtSolver::pattern`] a superset of the current Hessian's off-diagonal pattern,
+    /// and [`OtSolver::hessian_pattern`] its layout.
     /// Flips change the regular triangulation's edges at most Newton iterations, and each
     /// change would cost a new symbolic factorization (AMD ordering included, as much as the
     /// numeric one); flips mostly toggle between the two diagonals of the same quads, so the
@@ -369,19 +374,22 @@ impl<'d> OtSolver<'d> {
     /// Nor is skipping factorizations by conjugate gradients preconditioned with the last
     /// factor: it needs 8-20 iterations per step at 8 ms each, no cheaper than factoring,
     /// and its inexact steps tripled the Newton iterations on the 48k brain.)
-    fn update_pattern(&mut self, cells: &CellIntegrals) -> bool {
+    fn update_pattern(&mut self, cells: &CellIntegrals) -> Result<(), SolveError> {
         let current = interior_edge_keys(self.tri.sites.len(), &cells.edges);
         let missing = count_missing(&current, &self.pattern);
         if missing == 0 {
-            return false;
+            return Ok(());
         }
-        if missing as f64 > MOVING_PATTERN * current.len() as f64 {
-            self.pattern = current;
-            return true;
-        }
-        let union = sorted_union(&self.pattern, &current);
-        self.pattern = if union.len() as f64 > 1.2 * current.len() as f64 { current } else { union };
-        true
+        self.pattern = if missing as f64 > MOVING_PATTERN * current.len() as f64 {
+            current
+        } else {
+            let union = sorted_union(&self.pattern, &current);
+            if union.len() as f64 > 1.2 * current.len() as f64 { current } else { union }
+        };
+        // Unknowns are the sites but the pinned first one: (i, j) -> (i - 1, j - 1).
+        let keys: Vec<u64> = self.pattern.iter().map(|k| k - ((1u64 << 32) | 1)).collect();
+        self.hessian_pattern = GraphPattern::new(self.tri.sites.len() - 1, &keys, "transport Hessian")?;
+        Ok(())
     }
 
     /// Solve `H dw = tau - m` with `w_0` pinned.
@@ -390,11 +398,7 @@ impl<'d> OtSolver<'d> {
         if n == 1 {
             return Ok(vec![0.0]);
         }
-        if self.update_pattern(cells) || self.hessian_pattern.dim() != n - 1 {
-            // Unknowns are the sites but the pinned first one: (i, j) -> (i - 1, j - 1).
-            let keys: Vec<u64> = self.pattern.iter().map(|k| k - ((1u64 << 32) | 1)).collect();
-            self.hessian_pattern = GraphPattern::new(n - 1, &keys, "transport Hessian")?;
-        }
+        self.update_pattern(cells)?;
         // Explicit zeros on the kept pattern: while it covers the current edges the matrix
         // keeps its sparsity pattern and the symbolic factorization is reused.
         let mut diag = vec![0.0; n];
