@@ -93,11 +93,12 @@ fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
 /// Vertices outside the polygon of the fixed ones are first moved into it
 /// ([`fit_into_boundary_polygon`]): no fold-free map has them there. Then single vertices
 /// move into the kernels of their rings ([`kernel_untangle`]); folds that this leaves are
-/// handled by the convex-combination solve, local first: only vertices in planar discs
-/// around the folded faces move (the rest act as its boundary), the discs doubling until no
-/// fold is left ([`RegionGrowth`]); the last resort is the whole mesh with the fixed boundary. The attempt with the fewest
-/// folds left is kept (with only a few fixed vertices, as on a punctured closed surface, the
-/// whole-mesh solve can fold more than a local one).
+/// handled by the convex-combination solve, local first: only vertices in planar discs and
+/// rings of the mesh around the folded faces move (the rest act as its boundary), both
+/// growing until no fold is left ([`RegionGrowth`]); the last resort is the whole mesh with
+/// the fixed boundary. The attempt with the fewest folds left is kept (with only a few fixed
+/// vertices, as on a punctured closed surface, the whole-mesh solve can fold more than a
+/// local one).
 pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius: f64) -> UntangleReport {
     let folded = folded_faces(pos, faces);
     let mut report = UntangleReport { folded_before: folded.len(), ..Default::default() };
@@ -150,22 +151,32 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
     report
 }
 
-/// Which vertices the convex-combination solve may move: planar discs around the folded
-/// faces, or, with very many folds, rings of the mesh around them.
+/// Which vertices the convex-combination solve may move: the union of planar discs around the
+/// folded faces and rings of the mesh around them, both growing at each attempt.
 ///
 /// A disc is centred at a folded face's centroid with the radius of its corners' one-rings
-/// (seen from that centroid); attempt `j` takes the vertices within `2^(j-1)` of those radii.
-/// The first version grew the region by rings of the mesh (`k = 2, 4, 8, ...`): on the hand,
-/// whose fingers the transport map compresses unevenly, `k` rings are a long, non-convex
-/// strip in the plane, and a Tutte solve inside a non-convex outline folds faces at the rim
-/// (Floater's guarantee needs a convex boundary); two of the three smoothing candidates went
-/// through every attempt to `k = 64` (25k-30k vertices, 0.2 s each). Discs are convex in the
-/// plane: the same folds went away with regions of 1k-8k vertices (repairs 0.03-0.09 s).
-enum RegionGrowth {
-    /// Per vertex, the smallest `distance / radius` to a disc's centre; the attempt number.
-    Discs { reach: Vec<f64>, attempt: i32 },
-    /// The current region and how many rings it has grown.
-    Rings { region: Vec<bool>, grown: usize },
+/// (seen from that centroid); the first attempt takes the vertices within half of those
+/// radii, each next one doubles the scale, but takes at most four times as many vertices as
+/// the last: near a closed surface's puncture a few faces span much of the disk, and one
+/// doubling of their discs went from 596 vertices to the whole 164k-vertex ellipsoid.
+/// The rings are `k = 2, 4, 8, ...` rings of the mesh around the folded faces.
+///
+/// The first version grew by rings only: on the hand, whose fingers the transport map
+/// compresses unevenly, `k` rings are a long, non-convex strip in the plane, and a Tutte solve
+/// inside a non-convex outline folds faces at the rim (Floater's guarantee needs a convex
+/// boundary); two of the three smoothing candidates went through every attempt to `k = 64`
+/// (25k-30k vertices, 0.2 s each). With the discs, convex in the plane, the same folds went
+/// with regions of 1k-8k vertices (repairs 0.03-0.09 s). Discs alone left one fold next to
+/// the puncture of the 164k ellipsoid at every size up to the whole mesh (2.3 s), which the
+/// rings repair.
+struct RegionGrowth {
+    /// The ring region and how many rings it has grown.
+    ring: Vec<bool>,
+    grown: usize,
+    /// Per vertex, the smallest `distance / radius` to a disc's centre, the same values
+    /// sorted, and the last attempt's scale (0 before the first); `None` with very many
+    /// folds ([`DISC_EVALUATIONS`]).
+    discs: Option<(Vec<f64>, Vec<f64>, f64)>,
 }
 
 /// Attempts at most (the discs grow by `2^48` over them: from `1e-12` of the disk's radius
@@ -173,64 +184,69 @@ enum RegionGrowth {
 const MAX_REGION_ATTEMPTS: usize = 48;
 
 /// Above this many vertex-disc distance evaluations (vertices times folded faces) the region
-/// grows by rings, whose cost is that of the region.
+/// grows by rings only, whose cost is that of the region.
 const DISC_EVALUATIONS: usize = 50_000_000;
 
 impl RegionGrowth {
     fn new(folded: &[usize], faces: &[[u32; 3]], pos: &[[f64; 2]], rings: &[Option<Vec<u32>>], radius: f64) -> Self {
         let n = pos.len();
-        if folded.len().saturating_mul(n) > DISC_EVALUATIONS {
-            let mut region = vec![false; n];
-            for &f in folded {
-                for &v in &faces[f] {
-                    region[v as usize] = true;
-                }
+        let mut ring = vec![false; n];
+        for &f in folded {
+            for &v in &faces[f] {
+                ring[v as usize] = true;
             }
-            return RegionGrowth::Rings { region, grown: 0 };
         }
-        let distance = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
-        let discs: Vec<([f64; 2], f64)> = folded
-            .iter()
-            .map(|&f| {
-                let c = faces[f].map(|v| pos[v as usize]);
-                let centre = [(c[0][0] + c[1][0] + c[2][0]) / 3.0, (c[0][1] + c[1][1] + c[2][1]) / 3.0];
-                let r = faces[f]
-                    .iter()
-                    .filter_map(|&v| rings[v as usize].as_ref())
-                    .flatten()
-                    .map(|&u| distance(pos[u as usize], centre))
-                    .fold(1e-12 * radius, f64::max);
-                (centre, r)
-            })
-            .collect();
-        let reach = pos.par_iter().map(|&p| discs.iter().map(|&(c, r)| distance(p, c) / r).fold(f64::INFINITY, f64::min)).collect();
-        RegionGrowth::Discs { reach, attempt: -1 }
+        let discs = (folded.len().saturating_mul(n) <= DISC_EVALUATIONS).then(|| {
+            let distance = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+            let discs: Vec<([f64; 2], f64)> = folded
+                .iter()
+                .map(|&f| {
+                    let c = faces[f].map(|v| pos[v as usize]);
+                    let centre = [(c[0][0] + c[1][0] + c[2][0]) / 3.0, (c[0][1] + c[1][1] + c[2][1]) / 3.0];
+                    let r = faces[f]
+                        .iter()
+                        .filter_map(|&v| rings[v as usize].as_ref())
+                        .flatten()
+                        .map(|&u| distance(pos[u as usize], centre))
+                        .fold(1e-12 * radius, f64::max);
+                    (centre, r)
+                })
+                .collect();
+            let reach: Vec<f64> = pos.par_iter().map(|&p| discs.iter().map(|&(c, r)| distance(p, c) / r).fold(f64::INFINITY, f64::min)).collect();
+            let mut sorted = reach.clone();
+            sorted.par_sort_unstable_by(f64::total_cmp);
+            (reach, sorted, 0.0)
+        });
+        Self { ring, grown: 0, discs }
     }
 
     /// The next, larger region.
     fn grow(&mut self, rings: &[Option<Vec<u32>>]) -> Vec<bool> {
-        match self {
-            RegionGrowth::Discs { reach, attempt } => {
-                let scale = 2f64.powi(*attempt);
-                *attempt += 1;
-                reach.iter().map(|&d| d <= scale).collect()
-            }
-            RegionGrowth::Rings { region, grown } => {
-                let target = if *grown == 0 { 2 } else { *grown * 2 };
-                while *grown < target {
-                    let current: Vec<usize> = (0..region.len()).filter(|&v| region[v]).collect();
-                    for v in current {
-                        if let Some(ring) = &rings[v] {
-                            for &u in ring {
-                                region[u as usize] = true;
-                            }
-                        }
+        let target = if self.grown == 0 { 2 } else { self.grown * 2 };
+        while self.grown < target {
+            let current: Vec<usize> = (0..self.ring.len()).filter(|&v| self.ring[v]).collect();
+            for v in current {
+                if let Some(ring) = &rings[v] {
+                    for &u in ring {
+                        self.ring[u as usize] = true;
                     }
-                    *grown += 1;
                 }
-                region.clone()
+            }
+            self.grown += 1;
+        }
+        let mut region = self.ring.clone();
+        if let Some((reach, sorted, scale)) = self.discs.as_mut() {
+            *scale = if *scale == 0.0 {
+                0.5
+            } else {
+                let taken = sorted.partition_point(|&d| d <= *scale);
+                sorted.get(4 * taken.max(1)).map_or(2.0 * *scale, |&cap| cap.min(2.0 * *scale))
+            };
+            for (r, &d) in region.iter_mut().zip(reach.iter()) {
+                *r |= d <= *scale;
             }
         }
+        region
     }
 }
 
