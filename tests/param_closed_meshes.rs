@@ -200,3 +200,25 @@ fn smoothing_leaves_the_puncture_neighbourhood_alone() {
     assert_eq!(r.flipped_faces, 0);
     assert!(r.area_distortion.mean_abs < 0.02, "mean |d_area| {}", r.area_distortion.mean_abs);
 }
+
+/// The transport's logarithmic Newton steps (`OtOptions::log_step_error`) against plain
+/// steps only, on the lung lobe with its puncture at one end: fewer full-resolution Newton
+/// steps, the same map.
+#[test]
+fn logarithmic_newton_steps_save_iterations_and_keep_the_map() {
+    use capmesh::cap::PunctureEnd;
+    let mesh = read_mesh(&data("closed_lung_rml_chaste.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
+    let options = ParamOptions { puncture_end: PunctureEnd::Bottom, ..ParamOptions::default() };
+    let mut plain = options.clone();
+    plain.transport.log_step_error = f64::INFINITY;
+    let (a, b) = (parameterize(&mesh, &options, &NoProgress).unwrap(), parameterize(&mesh, &plain, &NoProgress).unwrap());
+    let (ra, rb) = (&a.report, &b.report);
+    eprintln!(
+        "lung: logarithmic {} + {} Newton steps, d_area {:.4}; plain {} + {}, d_area {:.4}",
+        ra.newton_iterations, ra.coarse_newton_iterations, ra.area_distortion.mean_abs, rb.newton_iterations, rb.coarse_newton_iterations, rb.area_distortion.mean_abs
+    );
+    assert!(ra.newton_iterations + 3 <= rb.newton_iterations, "{} against {}", ra.newton_iterations, rb.newton_iterations);
+    assert!((ra.z_star.unwrap() - rb.z_star.unwrap()).abs() < 1e-3);
+    assert!((ra.area_distortion.mean_abs - rb.area_distortion.mean_abs).abs() < 0.05 * rb.area_distortion.mean_abs);
+    assert_eq!(ra.flipped_faces, 0);
+}

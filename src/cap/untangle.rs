@@ -95,7 +95,7 @@ fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
 /// move into the kernels of their rings ([`kernel_untangle`]); folds that this leaves are
 /// handled by the convex-combination solve, local first: only vertices in planar discs and
 /// rings of the mesh around the folded faces move (the rest act as its boundary), both
-/// growing until no fold is left ([`RegionGrowth`]); the last resort is the whole mesh with
+/// growing until no fold is left (`RegionGrowth` below); the last resort is the whole mesh with
 /// the fixed boundary. The attempt with the fewest folds left is kept (with only a few fixed
 /// vertices, as on a punctured closed surface, the whole-mesh solve can fold more than a
 /// local one).

@@ -118,7 +118,7 @@ impl<'a> Locator<'a> {
     /// [`Locator::locate`], trying the triangle `hint` first (a query near the last one
     /// usually falls in the same triangle: the area equalization lifts a vertex's position,
     /// its finite-difference neighbours and its trial steps one after the other). The hint is
-    /// taken only when `p` is inside it by a margin ([`HINT_MARGIN`] in barycentric
+    /// taken only when `p` is inside it by a margin (`HINT_MARGIN` in barycentric
     /// coordinates), where no other triangle of an embedding contains it, so the answer is
     /// the one [`Locator::locate`] gives whatever the hint: results do not depend on which
     /// thread lifted what before.
