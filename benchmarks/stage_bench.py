@@ -128,6 +128,12 @@ def meshlab(path, limit):
     return row
 
 
+def median_run(runs, key):
+    """The run with the median `key` among the successful ones (the first failure if none)."""
+    ok = sorted((r for r in runs if r.get("status") == 0), key=lambda r: r[key])
+    return dict(ok[len(ok) // 2]) if ok else dict(runs[0])
+
+
 def target_for(name):
     for key, (seconds, gib) in TARGETS.items():
         if name == key or name.endswith(" " + key):
@@ -171,7 +177,8 @@ def write_report(rows, info):
         f"Machine: {info['cpu']}, {info['cores']} cores, {info['memory']}; {info['os']}; {info['rustc']}; {info['date']}.",
         f"One run of `bash benchmarks/stage_bench.sh`: `capmesh remesh IN --faces {FACES}` per mesh, each in its own process;",
         "MeshLab's isotropic explicit remeshing (pymeshlab 2025.7.post1, target edge of an equilateral",
-        f"mesh of {FACES} faces over the input's area, 10 iterations) on the same file in the same run.",
+        f"mesh of {FACES} faces over the input's area, 10 iterations) on the same file in the same run,",
+        f"alternating with capmesh, {info.get('repeats', 1)} times each (the 1M disk once): medians, and capmesh's stage columns from its median run.",
         "Seconds per stage; `param+remesh` is the parameterization, pull-back and area equalization",
         "(no quality metrics, no file I/O), compared with MeshLab's filter time (no I/O either).",
         "Peak RSS is the whole process's. Targets (issue 7): hand under 2 s, 100k vertices under 5 s,",
@@ -209,6 +216,7 @@ def main():
     ap.add_argument("--skip-meshlab", action="store_true")
     ap.add_argument("--skip-shared", action="store_true")
     ap.add_argument("--limit", type=float, default=1200.0, help="seconds per case")
+    ap.add_argument("--repeats", type=int, default=3, help="alternating runs per case (the 1M case runs once); medians are reported")
     args = ap.parse_args()
     sizes = [s for s in args.sizes.split(",") if s]
     cases = []
@@ -232,6 +240,7 @@ def main():
     # gzip inputs are decompressed once for MeshLab (pymeshlab reads plain files).
     rows = []
     info = machine()
+    info["repeats"] = args.repeats
     for name, path in cases:
         plain = path
         if path.endswith(".gz"):
@@ -239,9 +248,17 @@ def main():
             plain = os.path.join(work, os.path.basename(path)[:-3])
             with gzip.open(path, "rb") as src, open(plain, "wb") as dst:
                 dst.write(src.read())
-        print(f"{name}: capmesh ...", flush=True)
-        o = ours(plain, work, args.limit)
-        m = {"status": "skipped"} if args.skip_meshlab else meshlab(plain, args.limit)
+        # Alternating runs (ours, MeshLab, ours, ...); the median of each is reported, with
+        # ours' stage columns from its median run. The 1M case runs once.
+        repeats = 1 if name.endswith(" 1m") else args.repeats
+        print(f"{name}: capmesh ({repeats} runs) ...", flush=True)
+        runs_o, runs_m = [], []
+        for _ in range(repeats):
+            runs_o.append(ours(plain, work, args.limit))
+            runs_m.append({"status": "skipped"} if args.skip_meshlab else meshlab(plain, args.limit))
+        o, m = median_run(runs_o, "param_remesh"), median_run(runs_m, "seconds")
+        o["param_remesh_runs"] = [r.get("param_remesh") for r in runs_o]
+        m["seconds_runs"] = [r.get("seconds") for r in runs_m]
         row = {"name": name, "vertices": o.get("vertices"), "ours": o, "meshlab": m}
         rows.append(row)
         print(f"  ours: {o.get('status')} param+remesh {fmt(o.get('param_remesh'))} s, wall {o['wall_seconds']:.1f} s, peak {o['peak_rss_mib']:.0f} MiB"
