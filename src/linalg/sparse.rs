@@ -128,64 +128,6 @@ impl TripletList {
     }
 }
 
-/// Assembles a sequence of triplet lists that push their entries at the same positions in
-/// the same order (an iteration that rebuilds one matrix with new values): the first list is
-/// assembled by [`TripletList::assemble`] while recording which stored value each entry
-/// adds to; later lists with the same positions only scatter-add their values (checked
-/// entry by entry; any difference falls back to a full assembly). Stretch-energy iterations
-/// on the 53k hand: 20-28 ms per assembly before, a few ms after.
-#[derive(Debug, Clone, Default)]
-pub struct ScatterAssembler {
-    positions: Vec<(u32, u32)>,
-    slots: Vec<u32>,
-    col_ptr: Vec<usize>,
-    row_idx: Vec<usize>,
-    n: usize,
-}
-
-impl ScatterAssembler {
-    /// An assembler with nothing recorded.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// The matrix of `list` (duplicates summed), as [`TripletList::assemble`].
-    pub fn assemble(&mut self, list: &TripletList, what: &'static str) -> Result<SparseColMat<usize, f64>, SolveError> {
-        let same = self.n == list.n && self.positions.len() == list.entries.len() && self.positions.iter().zip(&list.entries).all(|(p, e)| p.0 == e.0 && p.1 == e.1);
-        if !same {
-            self.record(list, what)?;
-        }
-        let mut values = vec![0.0; self.row_idx.len()];
-        for (&slot, e) in self.slots.iter().zip(&list.entries) {
-            values[slot as usize] += e.2;
-        }
-        let symbolic = SymbolicSparseColMat::new_checked(self.n, self.n, self.col_ptr.clone(), None, self.row_idx.clone());
-        Ok(SparseColMat::new(symbolic, values))
-    }
-
-    /// Record the pattern of `list` and where each of its entries goes.
-    fn record(&mut self, list: &TripletList, what: &'static str) -> Result<(), SolveError> {
-        // The pattern from a full assembly; each entry finds its slot by binary search in its
-        // column (rows are sorted).
-        let mat = list.assemble(what)?;
-        let s = mat.symbolic();
-        self.col_ptr = s.col_ptr().to_vec();
-        self.row_idx = s.row_idx().to_vec();
-        self.slots = list
-            .entries
-            .iter()
-            .map(|&(r, c, _)| {
-                let (lo, hi) = (self.col_ptr[c as usize], self.col_ptr[c as usize + 1]);
-                let k = self.row_idx[lo..hi].binary_search(&(r as usize)).map_err(|_| SolveError::Backend { what, message: "entry missing from its own pattern".into() })?;
-                Ok((lo + k) as u32)
-            })
-            .collect::<Result<_, SolveError>>()?;
-        self.positions = list.entries.iter().map(|&(r, c, _)| (r, c)).collect();
-        self.n = list.n;
-        Ok(())
-    }
-}
-
 fn same_pattern(a: &SparseColMat<usize, f64>, col_ptr: &[usize], row_idx: &[usize]) -> bool {
     let s = a.symbolic();
     s.col_ptr() == col_ptr && s.row_idx() == row_idx
@@ -402,38 +344,6 @@ mod tests {
         let mut bad = TripletList::new(2);
         bad.push(2, 0, 1.0);
         assert!(bad.assemble("test").is_err());
-    }
-
-    /// A random list of `count` entries at positions from `seed`, values from `value_seed`.
-    fn random_list(n: usize, count: usize, seed: u64, value_seed: u64) -> TripletList {
-        let mut t = TripletList::new(n);
-        let (mut s, mut v) = (seed, value_seed);
-        for _ in 0..count {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            v = v.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            t.push((s >> 33) as usize % n, (s >> 45) as usize % n, ((v >> 20) % 1000) as f64 / 100.0 - 5.0);
-        }
-        t
-    }
-
-    #[test]
-    fn scatter_assembly_matches_full_assembly_and_follows_pattern_changes() {
-        let mut assembler = ScatterAssembler::new();
-        // Same positions, new values (the fast path), then other positions (a new record),
-        // then the first positions again: always the full assembly's matrix.
-        for (seed, value_seed) in [(1, 10), (1, 11), (1, 12), (2, 13), (1, 14)] {
-            let list = random_list(9, 150, seed, value_seed);
-            let fast = assembler.assemble(&list, "test").unwrap();
-            let full = list.assemble("test").unwrap();
-            assert_eq!(fast.symbolic().col_ptr(), full.symbolic().col_ptr());
-            assert_eq!(fast.symbolic().row_idx(), full.symbolic().row_idx());
-            for (a, b) in fast.val().iter().zip(full.val()) {
-                assert!((a - b).abs() < 1e-12);
-            }
-        }
-        let mut bad = TripletList::new(2);
-        bad.push(2, 0, 1.0);
-        assert!(assembler.assemble(&bad, "test").is_err());
     }
 
     #[test]
