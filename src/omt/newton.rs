@@ -135,8 +135,9 @@ enum NewtonFailure {
 }
 
 /// Relative mass error above which each Newton step first tries the step of the logarithmic
-/// masses by default ([`OtOptions::log_step_error`]), `H dw = m (ln(tau / m) + c)` (the Newton step of `ln m(w) = ln tau + c`, with the
-/// constant `c` that keeps the right-hand side's sum 0 as the Hessian's range requires), and
+/// masses by default ([`OtOptions::log_step_error`]), `H dw = m (ln(tau / m) + c)` (the
+/// Newton step of `ln m(w) = ln tau + c`, with the constant `c` that keeps the right-hand
+/// side's sum 0 as the Hessian's range requires), and
 /// falls back to the plain step `H dw = tau - m` when no step length down to
 /// [`LOG_MIN_STEP`] is accepted. From the Voronoi start most cells must grow or shrink by
 /// large factors; the plain step asks a cell 100 times too small for 99 times its mass, and
@@ -144,8 +145,9 @@ enum NewtonFailure {
 /// 1/8, 1/4, 1/4, 1/2, 1/2, against 1/4, 1/4, 1/4, 1/2 along the logarithmic steps. Below the
 /// threshold the plain step converges quadratically (the logarithmic one, measured, did
 /// not). Measured 2026-12-01 (full-resolution + coarse-search Newton steps): hand 10+37 ->
-/// 8+42, 48k brain 8+35 -> 5+39, lung 14+34 -> 7+36, bunny 45 -> 30, bird skull 36 -> 30,
-/// 41k ellipsoid 7+35 -> 6+39; distortions equal to 3 digits. Alone, without the fallback,
+/// 8+37, 48k brain 8+35 -> 5+30, lung 14+34 -> 7+30, closed hippocampus 12+36 -> 8+35, bunny
+/// 45 -> 30, bird skull 36 -> 30, 41k ellipsoid 7+35 -> 6+30, open meshes within one step;
+/// distortions equal to 3 digits. Alone, without the fallback,
 /// the logarithmic step stalled on the closed hippocampus's first coarse solve (its cells by
 /// the puncture must grow by orders of magnitude) and continuation took over.
 pub const LOG_STEP_ERROR: f64 = 0.01;
@@ -386,17 +388,21 @@ impl<'d> OtSolver<'d> {
                     report.log_steps += 1;
                 }
             }
-            let mut alpha = 1.0;
-            while accepted.is_none() {
-                accepted = try_step(&dw, alpha).map(|t| (t, alpha));
-                if accepted.is_none() {
-                    alpha *= 0.5;
-                    if alpha < options.min_step {
-                        return Err(NewtonFailure::Stalled { iteration: it, error: err });
+            let ((trial, c, e), alpha) = match accepted {
+                Some(step) => step,
+                None => {
+                    let mut alpha = 1.0;
+                    loop {
+                        if let Some(t) = try_step(&dw, alpha) {
+                            break (t, alpha);
+                        }
+                        alpha *= 0.5;
+                        if alpha < options.min_step {
+                            return Err(NewtonFailure::Stalled { iteration: it, error: err });
+                        }
                     }
                 }
-            }
-            let Some(((trial, c, e), alpha)) = accepted else { unreachable!("the loop above accepts or returns") };
+            };
             self.tri = trial;
             cells = c;
             err = e;
