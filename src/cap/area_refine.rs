@@ -106,19 +106,22 @@ pub fn refine_towards(
         .sum::<f64>();
     let orientation = if free_signs < 0.0 { -1.0 } else { 1.0 };
     let image_area = |lifted: &[[f64; 3]], f: &[u32; 3]| triangle_area(lifted[f[0] as usize], lifted[f[1] as usize], lifted[f[2] as usize]);
-    // Total image area, mean |d_area| and sum of d_area^2; each face's area once, in
-    // parallel (it ran once per sweep on one thread, 5 ms of each 25 ms sweep on the hand).
+    // Total image area, mean |d_area| and sum of d_area^2; each face's area and logarithm
+    // once, in parallel (it ran once per sweep on one thread, 5 ms of each 25 ms sweep on the
+    // hand), summed in face order so that the stopping test does not depend on the threads'
+    // split.
     let measure = |lifted: &[[f64; 3]]| -> (f64, f64, f64) {
         let areas: Vec<f64> = faces.par_iter().map(|f| image_area(lifted, f)).collect();
         let total: f64 = areas.iter().sum();
-        let (sum_abs, sum_sq) = areas
+        let terms: Vec<(f64, f64)> = areas
             .par_iter()
             .zip(source)
             .map(|(&a, &s)| {
                 let d = ((a / total) / (s / source_total)).ln();
                 if d.is_finite() { (d.abs(), d * d) } else { (0.0, 0.0) }
             })
-            .reduce(|| (0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1));
+            .collect();
+        let (sum_abs, sum_sq) = terms.iter().fold((0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1));
         (total, sum_abs / faces.len().max(1) as f64, sum_sq)
     };
     let (mut total, before, mut energy) = measure(lifted);

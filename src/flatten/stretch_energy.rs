@@ -80,16 +80,19 @@ fn source_areas(vertices: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<f64> {
 }
 
 /// [`stretch_energy`] with the faces' areas `source` computed once (the minimisation
-/// evaluates the energy two or three times per iteration), in parallel.
+/// evaluates the energy two or three times per iteration); the terms in parallel, summed in
+/// face order so that the result does not depend on the threads' split (the minimisation
+/// compares energies).
 fn energy_with_areas(source: &[f64], faces: &[[u32; 3]], f: &[[f64; 2]]) -> f64 {
-    faces
+    let terms: Vec<f64> = faces
         .par_iter()
         .zip(source)
         .map(|(t, &s)| {
             let img = signed_area_2d(f[t[0] as usize], f[t[1] as usize], f[t[2] as usize]);
             if s > 0.0 { img * img / s } else { 0.0 }
         })
-        .sum()
+        .collect();
+    terms.iter().sum()
 }
 
 /// The gradient `2 L_S(f) f` of [`stretch_energy`].
