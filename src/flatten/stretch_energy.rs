@@ -241,14 +241,14 @@ pub(crate) fn stretch_energy_map_with(
             break;
         }
         let refactor = !factored || fresh || it < options.factored_iterations;
-        let mut rhs = vec![vec![0.0; n_free], vec![0.0; n_free]];
-        if refactor {
-            let mat;
-            (mat, rhs) = layout.system(faces, &weights, &f, &is_fixed, &index)?;
+        let mut rhs = if refactor {
+            let (mat, rhs) = layout.system(faces, &weights, &f, &is_fixed, &index)?;
             solver.factor(&mat, "stretch energy")?;
             factored = true;
+            rhs
         } else {
             // The residual L_S(f) f of the free rows, solved with the last factorization.
+            let mut rhs = vec![vec![0.0; n_free], vec![0.0; n_free]];
             for (t, w) in faces.iter().zip(&weights) {
                 for k in 0..3 {
                     let (i, j) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
@@ -260,7 +260,8 @@ pub(crate) fn stretch_energy_map_with(
                     }
                 }
             }
-        }
+            rhs
+        };
         solver.solve_in_place(&mut rhs, "stretch energy")?;
         let mut next = f.clone();
         for v in 0..n {
