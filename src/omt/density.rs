@@ -43,6 +43,12 @@ pub trait RadialDensity: Sync {
     /// `int sigma ds` along the segment `ab`.
     fn segment_integral(&self, a: [f64; 2], b: [f64; 2]) -> f64;
 
+    /// [`RadialDensity::fan_mass`] and [`RadialDensity::segment_integral`] of one segment
+    /// (the transport integrates each power-cell edge once for both).
+    fn fan_mass_and_segment_integral(&self, a: [f64; 2], b: [f64; 2]) -> (f64, f64) {
+        (self.fan_mass(a, b), self.segment_integral(a, b))
+    }
+
     /// Mass of the disk of radius `r`.
     fn disk_mass(&self, r: f64) -> f64 {
         2.0 * std::f64::consts::PI * self.radial_mass(r)
@@ -133,6 +139,16 @@ impl RadialDensity for StereographicDensity {
         let Some((d, sa, sb, sign)) = line_frame(a, b) else { return 0.0 };
         let q = (1.0 + d * d).sqrt();
         sign * 2.0 * d / q * atan_difference(sb / q, sa / q)
+    }
+
+    fn fan_mass_and_segment_integral(&self, a: [f64; 2], b: [f64; 2]) -> (f64, f64) {
+        // The two closed forms share the frame and the arctangent.
+        let Some((d, sa, sb, sign)) = line_frame(a, b) else { return (0.0, 0.0) };
+        let q2 = 1.0 + d * d;
+        let q = q2.sqrt();
+        let angle = atan_difference(sb / q, sa / q);
+        let rational = |s: f64| s / (2.0 * q2 * (q2 + s * s));
+        (sign * 2.0 * d / q * angle, 4.0 * (rational(sb) - rational(sa) + angle / (2.0 * q2 * q)))
     }
 
     fn segment_integral(&self, a: [f64; 2], b: [f64; 2]) -> f64 {
