@@ -11,7 +11,7 @@
 //! A fold-free map therefore stays fold-free, and the boundary (fixed vertices) never moves.
 //! The parameterization over-relaxes the steps (nonlinear SOR, [`RefineOptions`]).
 
-use crate::mesh::geometry::{cross, dot, norm, signed_area_2d, sub, triangle_area};
+use crate::mesh::geometry::{cross, dot, signed_area_2d, sub, triangle_area};
 use rayon::prelude::*;
 
 /// What the refinement did.
@@ -142,7 +142,8 @@ pub fn refine_towards(
         for class in &colors {
             let moves: Vec<(usize, [f64; 2], [f64; 3])> = class
                 .par_iter()
-                .filter_map(|&v| local.step(v, wedges.at(v), plane, lifted).map(|(p, lp)| (v, p, lp)))
+                .map_init(Vec::new, |scratch, &v| local.step(v, wedges.at(v), plane, lifted, scratch).map(|(p, lp)| (v, p, lp)))
+                .flatten_iter()
                 .collect();
             for (v, p, lp) in moves {
                 plane[v] = p;
@@ -219,80 +220,105 @@ struct LocalProblem<'a> {
     over_relaxation: f64,
 }
 
+/// One face's residual `d_area` at a vertex and its gradient `d ln A / d l_v` with respect
+/// to the vertex's lifted position.
+#[derive(Debug, Clone, Copy)]
+struct Linearized {
+    residual: f64,
+    gradient: [f64; 3],
+}
+
 impl LocalProblem<'_> {
-    /// `d_area` of the faces `local` around a vertex placed at `p` (lifted `lp`) into `out`;
-    /// `false` when one of them loses the plane's orientation or has no area.
-    fn residuals(&self, p: [f64; 2], lp: [f64; 3], local: &[Wedge], plane: &[[f64; 2]], lifted: &[[f64; 3]], out: &mut Vec<f64>) -> bool {
+    /// The residuals `d_area` of the faces `local` around vertex `v` at its current position
+    /// and their gradients into `out` (cleared first); the sum of squared residuals and the
+    /// shortest planar edge at `v`. `None` when a face has lost the plane's orientation or
+    /// has no area. The gradient of a triangle's area at a corner is half the unit normal
+    /// crossed with the opposite edge, so `grad ln A = n x (b - a) / |n|^2` with `n` the
+    /// corner's cross product: one cross product per face gives both.
+    fn linearize(&self, v: usize, local: &[Wedge], plane: &[[f64; 2]], lifted: &[[f64; 3]], out: &mut Vec<Linearized>) -> Option<(f64, f64)> {
         out.clear();
+        let (p0, l0) = (plane[v], lifted[v]);
+        let (mut energy, mut shortest2) = (0.0, f64::INFINITY);
+        for w in local {
+            let (pa, pb) = (plane[w.a as usize], plane[w.b as usize]);
+            if self.orientation * signed_area_2d(p0, pa, pb) <= 0.0 {
+                return None;
+            }
+            for q in [pa, pb] {
+                shortest2 = f64::min(shortest2, (q[0] - p0[0]).powi(2) + (q[1] - p0[1]).powi(2));
+            }
+            let (a, b) = (lifted[w.a as usize], lifted[w.b as usize]);
+            let n = cross(sub(a, l0), sub(b, l0));
+            let nn = dot(n, n);
+            let twice_area = nn.sqrt();
+            if !(twice_area > 0.0 && w.ln_source.is_finite()) {
+                return None;
+            }
+            let residual = (0.5 * twice_area).ln() - w.ln_source - self.offset;
+            energy += residual * residual;
+            out.push(Linearized { residual, gradient: cross(n, sub(b, a)).map(|x| x / nn) });
+        }
+        Some((energy, shortest2.sqrt()))
+    }
+
+    /// Whether the vertex placed at `p` (lifted `lp`) keeps every face of `local` oriented
+    /// with positive area and brings the sum of squared residuals below `bound` (stopping at
+    /// the first face that decides it).
+    fn lowers(&self, p: [f64; 2], lp: [f64; 3], local: &[Wedge], plane: &[[f64; 2]], lifted: &[[f64; 3]], bound: f64) -> bool {
+        let mut energy = 0.0;
         for w in local {
             let (a, b) = (w.a as usize, w.b as usize);
             if self.orientation * signed_area_2d(p, plane[a], plane[b]) <= 0.0 {
                 return false;
             }
             let area = triangle_area(lp, lifted[a], lifted[b]);
-            if !(area > 0.0 && w.ln_source.is_finite()) {
+            if !(area > 0.0) {
                 return false;
             }
-            out.push(area.ln() - w.ln_source - self.offset);
+            let r = area.ln() - w.ln_source - self.offset;
+            energy += r * r;
+            if !(energy < bound) {
+                return false;
+            }
         }
         true
     }
 
-    /// The Jacobian of [`LocalProblem::residuals`] with respect to the planar position of `v`:
-    /// `d ln A_T / dp = (grad_{l_v} A_T . dl/dp) / A_T`, where the gradient of a triangle's
-    /// area at a corner is half the unit normal crossed with the opposite edge and `dl/dp`,
-    /// the lift's Jacobian, is taken by forward differences at the scale of the shortest
-    /// incident edge (one lift per column instead of re-evaluating every face).
-    fn jacobian(&self, v: usize, local: &[Wedge], plane: &[[f64; 2]], lifted: &[[f64; 3]]) -> Option<Vec<[f64; 2]>> {
-        let h = 1e-6 * local_scale(plane[v], local, plane);
-        if !(h > 0.0) {
-            return None;
-        }
-        let (p0, l0) = (plane[v], lifted[v]);
-        let dl = [0, 1].map(|k| {
-            let mut p = p0;
-            p[k] += h;
-            let l = (self.lift)(p);
-            [(l[0] - l0[0]) / h, (l[1] - l0[1]) / h, (l[2] - l0[2]) / h]
-        });
-        local
-            .iter()
-            .map(|w| {
-                let (a, b) = (lifted[w.a as usize], lifted[w.b as usize]);
-                let n = cross(sub(a, l0), sub(b, l0));
-                let twice_area = norm(n);
-                if !(twice_area > 0.0) {
-                    return None;
-                }
-                // grad A / A = (n / |n|) x (b - a) / |n|.
-                let g = cross(n, sub(b, a)).map(|x| x / (twice_area * twice_area));
-                Some([dot(g, dl[0]), dot(g, dl[1])])
-            })
-            .collect()
+    /// The lift's Jacobian `dl/dp` at `p` (lifted `lp`) by forward differences of step `h`:
+    /// one lift per column.
+    fn lift_jacobian(&self, p: [f64; 2], lp: [f64; 3], h: f64) -> [[f64; 3]; 2] {
+        [0, 1].map(|k| {
+            let mut q = p;
+            q[k] += h;
+            let l = (self.lift)(q);
+            [(l[0] - lp[0]) / h, (l[1] - lp[1]) / h, (l[2] - lp[2]) / h]
+        })
     }
 
     /// A damped, possibly over-relaxed Gauss-Newton step of the free vertex `v` on
     /// `sum_{T at v} d_area(T)^2`: the new planar and lifted position, or `None` when no step
-    /// lowers the sum.
-    fn step(&self, v: usize, local: &[Wedge], plane: &[[f64; 2]], lifted: &[[f64; 3]]) -> Option<([f64; 2], [f64; 3])> {
+    /// lowers the sum. The residuals' Jacobian with respect to the planar position is
+    /// `grad ln A . dl/dp`, `dl/dp` taken at the scale of the shortest incident edge.
+    fn step(&self, v: usize, local: &[Wedge], plane: &[[f64; 2]], lifted: &[[f64; 3]], scratch: &mut Vec<Linearized>) -> Option<([f64; 2], [f64; 3])> {
         if local.is_empty() {
             return None;
         }
-        let (mut r0, mut r) = (Vec::with_capacity(local.len()), Vec::with_capacity(local.len()));
-        let p0 = plane[v];
-        if !self.residuals(p0, lifted[v], local, plane, lifted, &mut r0) {
+        let (e0, shortest) = self.linearize(v, local, plane, lifted, scratch)?;
+        let h = 1e-6 * shortest;
+        if !(h > 0.0) {
             return None;
         }
-        let e0: f64 = r0.iter().map(|r| r * r).sum();
-        let jac = self.jacobian(v, local, plane, lifted)?;
+        let p0 = plane[v];
+        let dl = self.lift_jacobian(p0, lifted[v], h);
         // Gauss-Newton step: (J^T J + eps I) s = -J^T r.
         let (mut a, mut b, mut c, mut g0, mut g1) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for (j, r) in jac.iter().zip(&r0) {
+        for f in scratch.iter() {
+            let j = [dot(f.gradient, dl[0]), dot(f.gradient, dl[1])];
             a += j[0] * j[0];
             b += j[0] * j[1];
             c += j[1] * j[1];
-            g0 += j[0] * r;
-            g1 += j[1] * r;
+            g0 += j[0] * f.residual;
+            g1 += j[1] * f.residual;
         }
         let eps = 1e-9 * (a + c);
         let (a, c) = (a + eps, c + eps);
@@ -305,7 +331,7 @@ impl LocalProblem<'_> {
         for _ in 0..8 {
             let p = [p0[0] + t * step[0], p0[1] + t * step[1]];
             let lp = (self.lift)(p);
-            if self.residuals(p, lp, local, plane, lifted, &mut r) && r.iter().map(|r| r * r).sum::<f64>() < e0 {
+            if self.lowers(p, lp, local, plane, lifted, e0) {
                 return Some((p, lp));
             }
             t *= 0.5;
@@ -345,22 +371,6 @@ fn color_classes(wedges: &Wedges, fixed: &[bool]) -> Vec<Vec<usize>> {
     classes
 }
 
-/// Shortest planar edge from a vertex at `p` to the other corners of its wedges.
-fn local_scale(p: [f64; 2], local: &[Wedge], plane: &[[f64; 2]]) -> f64 {
-    let mut s = f64::INFINITY;
-    for w in local {
-        for u in [w.a, w.b] {
-            let q = plane[u as usize];
-            s = s.min(((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt());
-        }
-    }
-    if s.is_finite() {
-        s
-    } else {
-        0.0
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -394,18 +404,29 @@ mod tests {
         let local = LocalProblem { offset: 0.1, orientation: 1.0, lift: &lift, over_relaxation: 1.0 };
         let wedges = Wedges::new(plane.len(), &cap.faces, &ln_source);
         let mut checked = 0;
+        let mut linear = Vec::new();
+        let residuals_at = |p: [f64; 2], v: usize| -> Vec<f64> {
+            let (mut q, mut l) = (plane.clone(), lifted.clone());
+            q[v] = p;
+            l[v] = lift(p);
+            let mut out = Vec::new();
+            local.linearize(v, wedges.at(v), &q, &l, &mut out).expect("oriented");
+            out.iter().map(|f| f.residual).collect()
+        };
         for v in (0..plane.len()).filter(|&v| !fixed[v]).step_by(7) {
             let incident = wedges.at(v);
             assert_eq!(incident.len(), cap.faces.iter().filter(|f| f.contains(&(v as u32))).count());
-            let jac = local.jacobian(v, incident, &plane, &lifted).expect("jacobian");
-            let h = 1e-5 * local_scale(plane[v], incident, &plane);
-            let (mut plus, mut minus) = (Vec::new(), Vec::new());
+            let (energy, shortest) = local.linearize(v, incident, &plane, &lifted, &mut linear).expect("linearize");
+            assert!((energy - linear.iter().map(|f| f.residual * f.residual).sum::<f64>()).abs() < 1e-15);
+            // The step's planar Jacobian, as `step` forms it.
+            let dl = local.lift_jacobian(plane[v], lifted[v], 1e-6 * shortest);
+            let jac: Vec<[f64; 2]> = linear.iter().map(|f| [dot(f.gradient, dl[0]), dot(f.gradient, dl[1])]).collect();
+            let h = 1e-5 * shortest;
             for k in 0..2 {
                 let (mut p, mut m) = (plane[v], plane[v]);
                 p[k] += h;
                 m[k] -= h;
-                assert!(local.residuals(p, lift(p), incident, &plane, &lifted, &mut plus));
-                assert!(local.residuals(m, lift(m), incident, &plane, &lifted, &mut minus));
+                let (plus, minus) = (residuals_at(p, v), residuals_at(m, v));
                 for (j, (a, b)) in plus.iter().zip(&minus).enumerate() {
                     let fd = (a - b) / (2.0 * h);
                     let scale = jac.iter().map(|g| g[0].abs().max(g[1].abs())).fold(0.0, f64::max);
