@@ -3,9 +3,14 @@
 //! `d m_i / d w_j = -int_{cell_i ∩ cell_j} sigma ds / (2 |y_i - y_j|)`
 //! (Kitagawa, Mérigot and Thibert 2019; the paper's Eq. 8 energy in weight form).
 //!
-//! Geometry traversal is apart from the integrand: [`dual_polygon`] walks the dual polygon of
-//! one site and [`clip_to_disk`] clips it to the disk; [`integrate_cell`] hands each piece (a
-//! straight edge or an arc of the circle) to a [`RadialDensity`].
+//! Geometry traversal is apart from the integrand. Every piece is integrated from the origin
+//! (fan triangles, circular sectors), so a cell's integral is the sum over its edges: each
+//! power-cell edge (the dual of a triangulation edge, clipped to the disk) is integrated once
+//! and added to one of its cells, taken from the other. Only the cells that meet the circle,
+//! lie on the convex hull or have no edge inside the disk are walked whole: [`dual_polygon`]
+//! walks the dual polygon of one site and [`clip_to_disk`] clips it to the disk, arcs
+//! included; [`integrate_cell`] hands each piece (a straight edge or an arc of the circle) to
+//! a [`RadialDensity`].
 
 use super::density::RadialDensity;
 use super::triangulation::{RegularTriangulation, NONE};
@@ -259,25 +264,23 @@ pub fn integrate(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity
     cells
 }
 
-/// The first moments of every cell (what [`integrate`] adds to [`integrate_masses`]).
+/// The first moments of every cell (what [`integrate`] adds to [`integrate_masses`]), each
+/// power-cell edge's fan moment computed once for both its cells like the masses.
 pub fn cell_moments(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity) -> Vec<[f64; 2]> {
     let (centers, far) = centers_and_far(tri, r);
-    per_clipped_cell(tri, &centers, far, r, |pieces, full| cell_moment(pieces, full, r, density))
-}
-
-/// `f` of every site's power cell (from the triangles' power `centers` and the far length of
-/// [`centers_and_far`]) clipped to the disk of radius `r`: its pieces and whether it covers
-/// the whole disk. In parallel, each worker with its own scratch buffers (four allocations
-/// per cell otherwise).
-fn per_clipped_cell<T: Send>(tri: &RegularTriangulation, centers: &[[f64; 2]], far: f64, r: f64, f: impl Fn(&[Piece], bool) -> T + Sync) -> Vec<T> {
-    (0..tri.sites.len())
-        .into_par_iter()
-        .map_init(CellScratch::default, |s, i| {
-            dual_polygon(tri, centers, i, far, &mut s.pts, &mut s.labels);
-            let full = clip_to_disk(&s.pts, &s.labels, r, &mut s.segs, &mut s.pieces);
-            f(&s.pieces, full)
-        })
-        .collect()
+    let edges = clipped_edges(tri, &centers, far, r, |_, _, x0, x1| density.fan_moment(x0, x1));
+    let mut moment = vec![[0.0; 2]; tri.sites.len()];
+    for e in &edges {
+        let (i, j) = (e.i as usize, e.j as usize);
+        for k in 0..2 {
+            moment[j][k] += e.value[k];
+            moment[i][k] -= e.value[k];
+        }
+    }
+    for (v, m) in walked_cells(tri, &centers, far, r, &edges, |pieces, full| cell_moment(pieces, full, r, density)) {
+        moment[v] = m;
+    }
+    moment
 }
 
 /// Buffers of one cell's polygon and pieces, reused from cell to cell.
@@ -294,25 +297,61 @@ struct CellScratch {
 /// solve took the transport of the lung lobe from 1.00 to 0.83 s, the 12k brain from 0.45 to
 /// 0.38 s (one run each; the hand, whose time is in its factorizations, did not move).
 ///
-/// Each power-cell edge is integrated once, for both of its cells: its fan mass is added to
-/// one cell and taken from the other, and the same arctangent gives the Hessian entry
-/// ([`RadialDensity::fan_mass_and_segment_integral`]). Only the cells that meet the circle
-/// (their arcs), lie on the convex hull (unbounded) or have no edge inside the disk are
-/// walked as whole clipped polygons ([`dual_polygon`], [`clip_to_disk`]).
+/// Each power-cell edge's fan mass and Hessian entry come from one arctangent
+/// ([`RadialDensity::fan_mass_and_segment_integral`]); against whole-cell walks (three
+/// arctangents per interior edge) the transport, three alternating runs each (2026-12-01),
+/// took hand 1.36-1.61 -> 1.25-1.50 s, MEG helmet 0.065-0.090 -> 0.064-0.067 s, closed
+/// hippocampus 0.34-0.41 -> 0.25-0.33 s.
 pub fn integrate_masses(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity) -> CellIntegrals {
     let (centers, far) = centers_and_far(tri, r);
-    let n = tri.sites.len();
-    let pieces: Vec<EdgePiece> = (0..tri.triangles.len())
+    let edges = clipped_edges(tri, &centers, far, r, |pi, pj, x0, x1| {
+        let (fan, s) = density.fan_mass_and_segment_integral(x0, x1);
+        let d = ((pi[0] - pj[0]).powi(2) + (pi[1] - pj[1]).powi(2)).sqrt();
+        (fan, if s > 0.0 && d > 0.0 { s / (2.0 * d) } else { 0.0 })
+    });
+    // Sum the fans in edge order (deterministic whatever the threads' split).
+    let mut mass = vec![0.0; tri.sites.len()];
+    for e in &edges {
+        mass[e.j as usize] += e.value.0;
+        mass[e.i as usize] -= e.value.0;
+    }
+    for (v, m) in walked_cells(tri, &centers, far, r, &edges, |pieces, full| cell_mass(pieces, full, r, density)) {
+        mass[v] = m;
+    }
+    for m in &mut mass {
+        *m = m.max(0.0);
+    }
+    let edges = edges.iter().filter(|e| e.value.1 > 0.0).map(|e| (e.i.min(e.j), e.i.max(e.j), e.value.1)).collect();
+    CellIntegrals { mass, moment: Vec::new(), edges }
+}
+
+/// One power-cell edge clipped to the disk with `value` integrated on it: its sites
+/// (`a -> b` runs counter-clockwise around `j`, clockwise around `i`), and whether both its
+/// ends are inside the disk and it is bounded.
+#[derive(Debug, Clone, Copy)]
+struct ClippedEdge<T> {
+    i: u32,
+    j: u32,
+    value: T,
+    whole: bool,
+}
+
+/// Every power-cell edge (the dual of each triangulation edge, from the triangles' power
+/// `centers`; hull edges give rays of length `far`) clipped to the disk of radius `r`, with
+/// `f(y_i, y_j, start, end)` of the clipped segment. In parallel over the triangles, each
+/// edge once, in triangle order.
+fn clipped_edges<T: Send>(tri: &RegularTriangulation, centers: &[[f64; 2]], far: f64, r: f64, f: impl Fn([f64; 2], [f64; 2], [f64; 2], [f64; 2]) -> T + Sync) -> Vec<ClippedEdge<T>> {
+    let f = &f;
+    (0..tri.triangles.len())
         .into_par_iter()
         .flat_map_iter(|t| {
             let tr = tri.triangles[t];
-            let centers = &centers;
             (0..3).filter_map(move |k| {
                 let u = tri.neighbors[t][k];
                 let (i, j) = (tr[(k + 1) % 3], tr[(k + 2) % 3]);
+                let (pi, pj) = (tri.sites[i as usize], tri.sites[j as usize]);
                 let (a, b) = if u == NONE {
                     // Hull edge i -> j: ray outward (to the right of i -> j).
-                    let (pi, pj) = (tri.sites[i as usize], tri.sites[j as usize]);
                     let nrm = unit([pj[1] - pi[1], -(pj[0] - pi[0])]);
                     let c = centers[t];
                     (c, [c[0] + far * nrm[0], c[1] + far * nrm[1]])
@@ -322,66 +361,53 @@ pub fn integrate_masses(tri: &RegularTriangulation, r: f64, density: &dyn Radial
                     return None;
                 };
                 let (x0, x1, on0, on1) = clip_segment(a, b, r)?;
-                // The edge a -> b runs counter-clockwise around j, clockwise around i.
-                let (fan, s) = density.fan_mass_and_segment_integral(x0, x1);
-                let (pi, pj) = (tri.sites[i as usize], tri.sites[j as usize]);
-                let d = ((pi[0] - pj[0]).powi(2) + (pi[1] - pj[1]).powi(2)).sqrt();
-                let hessian = if s > 0.0 && d > 0.0 { s / (2.0 * d) } else { 0.0 };
-                Some(EdgePiece { i, j, fan, hessian, whole: !(on0 || on1 || u == NONE) })
+                Some(ClippedEdge { i, j, value: f(pi, pj, x0, x1), whole: !(on0 || on1 || u == NONE) })
             })
         })
-        .collect();
-    // Sum the fans in edge order (deterministic whatever the threads' split); mark the cells
-    // whose edge sum is not their mass.
-    let mut mass = vec![0.0; n];
-    let mut inside = vec![0u32; n];
-    let mut walk = vec![false; n];
-    for e in &pieces {
-        let (i, j) = (e.i as usize, e.j as usize);
-        mass[j] += e.fan;
-        mass[i] -= e.fan;
-        inside[i] += 1;
-        inside[j] += 1;
-        if !e.whole {
-            walk[i] = true;
-            walk[j] = true;
-        }
-    }
-    let walked: Vec<usize> = (0..n).filter(|&v| walk[v] || inside[v] == 0).collect();
-    let walked_mass: Vec<f64> = walked
-        .par_iter()
-        .map_init(CellScratch::default, |s, &v| {
-            dual_polygon(tri, &centers, v, far, &mut s.pts, &mut s.labels);
-            let full = clip_to_disk(&s.pts, &s.labels, r, &mut s.segs, &mut s.pieces);
-            cell_mass(&s.pieces, full, r, density)
-        })
-        .collect();
-    for (&v, m) in walked.iter().zip(walked_mass) {
-        mass[v] = m;
-    }
-    for m in &mut mass {
-        *m = m.max(0.0);
-    }
-    let edges = pieces.iter().filter(|e| e.hessian > 0.0).map(|e| (e.i.min(e.j), e.i.max(e.j), e.hessian)).collect();
-    CellIntegrals { mass, moment: Vec::new(), edges }
+        .collect()
 }
 
-/// One power-cell edge clipped to the disk: its sites (`a -> b` counter-clockwise around
-/// `j`), its fan mass from the origin, its Hessian entry, and whether both its ends are
-/// inside the disk and it is bounded (then its cells' masses are sums of fans).
-#[derive(Debug, Clone, Copy)]
-struct EdgePiece {
-    i: u32,
-    j: u32,
-    fan: f64,
-    hessian: f64,
-    whole: bool,
+/// `f` of the cells whose sum over `edges` is not their integral, from their whole clipped
+/// polygons: cells that meet the circle (their arcs), lie on the hull (unbounded) or have no
+/// edge inside the disk (empty, or holding the whole disk).
+fn walked_cells<T: Send, E>(tri: &RegularTriangulation, centers: &[[f64; 2]], far: f64, r: f64, edges: &[ClippedEdge<E>], f: impl Fn(&[Piece], bool) -> T + Sync) -> Vec<(usize, T)> {
+    let n = tri.sites.len();
+    let (mut inside, mut walk) = (vec![false; n], vec![false; n]);
+    for e in edges {
+        for v in [e.i as usize, e.j as usize] {
+            inside[v] = true;
+            walk[v] |= !e.whole;
+        }
+    }
+    let walked: Vec<usize> = (0..n).filter(|&v| walk[v] || !inside[v]).collect();
+    walked
+        .into_par_iter()
+        .map_init(CellScratch::default, |s, v| {
+            dual_polygon(tri, centers, v, far, &mut s.pts, &mut s.labels);
+            let full = clip_to_disk(&s.pts, &s.labels, r, &mut s.segs, &mut s.pieces);
+            (v, f(&s.pieces, full))
+        })
+        .collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::omt::{StereographicDensity, UniformDensity};
+
+    /// The reference: `f` of every site's whole power cell (from the triangles' power
+    /// `centers` and the far length of [`centers_and_far`]) clipped to the disk of radius
+    /// `r`, as the cells were integrated before the edge sums.
+    fn per_clipped_cell<T: Send>(tri: &RegularTriangulation, centers: &[[f64; 2]], far: f64, r: f64, f: impl Fn(&[Piece], bool) -> T + Sync) -> Vec<T> {
+        (0..tri.sites.len())
+            .into_par_iter()
+            .map_init(CellScratch::default, |s, i| {
+                dual_polygon(tri, centers, i, far, &mut s.pts, &mut s.labels);
+                let full = clip_to_disk(&s.pts, &s.labels, r, &mut s.segs, &mut s.pieces);
+                f(&s.pieces, full)
+            })
+            .collect()
+    }
 
     /// Sites on a jittered grid in the square [-1, 1]^2 with weights that make some cells
     /// much larger than others.
@@ -403,7 +429,7 @@ mod tests {
     }
 
     #[test]
-    fn edge_summed_masses_equal_whole_cell_integrals() {
+    fn edge_summed_masses_and_moments_equal_whole_cell_integrals() {
         let tri = weighted_triangulation();
         // Disks inside the sites' hull, cutting through it, and holding all of it.
         for r in [0.45, 0.93, 1.6] {
@@ -419,6 +445,13 @@ mod tests {
                 }
                 for (v, (a, b)) in fast.mass.iter().zip(&whole).enumerate() {
                     assert!((a - b).abs() <= 1e-12 * total, "r {r} cell {v}: {a} vs {b}");
+                }
+                let moments = cell_moments(&tri, r, density);
+                let whole_moments = per_clipped_cell(&tri, &centers, far, r, |pieces, full| cell_moment(pieces, full, r, density));
+                for (v, (a, b)) in moments.iter().zip(&whole_moments).enumerate() {
+                    for k in 0..2 {
+                        assert!((a[k] - b[k]).abs() <= 1e-12 * total * r, "r {r} cell {v}: moment {a:?} vs {b:?}");
+                    }
                 }
             }
         }
