@@ -107,10 +107,14 @@ impl BoundaryPolygon {
 /// radius `radius`) when any lies outside it; see the module docs.
 pub fn fit_into_boundary_polygon(pos: &mut [[f64; 2]], fixed: &[bool], radius: f64) -> PolygonFit {
     let Some(polygon) = BoundaryPolygon::new(pos, fixed) else { return PolygonFit::NoPolygon };
-    if (0..pos.len()).all(|v| fixed[v] || polygon.contains(pos[v])) {
+    let inradius = polygon.inradius();
+    // Points well inside the inscribed circle need no test against every edge (on the
+    // 53k-vertex hand, 1200 edges per point were 1.5% of the parameterization's time).
+    let inner = if polygon.contains([0.0, 0.0]) { inradius * (1.0 - 1e-9) } else { 0.0 };
+    let surely_inside = |p: [f64; 2]| p[0] * p[0] + p[1] * p[1] < inner * inner;
+    if (0..pos.len()).all(|v| fixed[v] || surely_inside(pos[v]) || polygon.contains(pos[v])) {
         return PolygonFit::Inside;
     }
-    let inradius = polygon.inradius();
     let rho0 = (2.0 * inradius - radius).max(0.0);
     let mut moved = 0;
     for v in 0..pos.len() {
