@@ -203,7 +203,8 @@ impl SpdSolver {
         let backend = |e: &dyn std::fmt::Debug| SolveError::Backend { what, message: format!("{e:?}") };
         self.analyze(a, what)?;
         let sym = &self.symbolic.as_deref().ok_or(SolveError::Singular { what })?.2;
-        self.values.clear();
+        // No clearing: the supernodal factorization (forced in `analyze`) zeroes its values
+        // itself, and clearing them first wrote the hand's 21 MB factor twice.
         self.values.resize(sym.len_val(), 0.0);
         let mut buf = MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())).map_err(|e| backend(&e))?;
         sym.factorize_numeric_llt(&mut self.values, a.as_ref(), Side::Lower, Default::default(), Par::Seq, MemStack::new(&mut buf), Default::default())
