@@ -383,11 +383,16 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
     progress::check(progress, Stage::Validate, 0.0, "checking the mesh")?;
     // Hard errors of the input as given (indices out of range, repeated indices in a face,
     // NaN, duplicate faces, non-manifold edges): welding would drop such faces silently.
-    crate::mesh::validate::checked_topology(mesh)?;
+    let input_topology = crate::mesh::validate::checked_topology(mesh)?;
     let diag = mesh.bounding_box_diagonal();
     let welded = repair::weld_coincident(mesh, options.weld_tolerance * diag);
     let work = &welded.mesh;
-    let (kind, topology) = validate(work)?;
+    // Nothing welded or dropped: the input's topology is the welded mesh's.
+    let (kind, topology) = if work.vertices.len() == mesh.vertices.len() && work.faces == mesh.faces {
+        crate::mesh::validate::classify_checked(input_topology)?
+    } else {
+        validate(work)?
+    };
     progress::check(progress, Stage::Flatten, 0.0, "initial flattening")?;
     let t_flat = Instant::now();
     let (faces, boundary, disk, flatten_report, puncture) = match kind {

@@ -143,7 +143,11 @@ pub fn inspect(mesh: &TriMesh) -> Result<MeshSummary, MeshError> {
 /// Unreferenced vertices and zero-area faces are accepted (see the module docs); weld first
 /// with [`crate::mesh::repair::weld_coincident`], or call [`require_clean`].
 pub fn validate(mesh: &TriMesh) -> Result<(SurfaceKind, Topology), MeshError> {
-    let topology = checked_topology(mesh)?;
+    classify_checked(checked_topology(mesh)?)
+}
+
+/// [`validate`]'s checks after [`checked_topology`], on its result.
+pub(crate) fn classify_checked(topology: Topology) -> Result<(SurfaceKind, Topology), MeshError> {
     if topology.n_components > 1 {
         return Err(MeshError::SeveralComponents {
             count: topology.n_components,
