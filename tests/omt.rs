@@ -122,3 +122,24 @@ fn newton_reaches_prescribed_masses() {
     let (_, again) = solver.solve(&target, &OtOptions::default(), &NoProgress).unwrap();
     assert!(again.iterations <= report.iterations + 2);
 }
+
+#[test]
+fn backtracking_factor_outside_the_unit_interval_is_refused() {
+    let r = 1.5;
+    let s = sites(60, r, 5);
+    let target = vec![1.0; s.len()];
+    let d = StereographicDensity;
+    let mut solver = OtSolver::new(&s, r, &d).unwrap();
+    for shrink in [0.0, 1.0, 2.0, f64::NAN] {
+        let options = OtOptions { log_step_shrink: shrink, ..OtOptions::default() };
+        let err = solver.solve(&target, &options, &NoProgress).err().unwrap_or_else(|| panic!("shrink {shrink} accepted"));
+        assert!(err.to_string().contains("log_step_shrink"), "{err}");
+    }
+    // Halving, the finer default and anything between converge to the same masses.
+    for shrink in [0.5, 0.6, capmesh::omt::newton::LOG_STEP_SHRINK] {
+        let options = OtOptions { log_step_shrink: shrink, ..OtOptions::default() };
+        let (cells, report) = OtSolver::new(&s, r, &d).unwrap().solve(&target, &options, &NoProgress).unwrap();
+        assert!(report.mass_error <= options.tolerance, "shrink {shrink}: {}", report.mass_error);
+        assert_eq!(cells.mass.len(), s.len());
+    }
+}
