@@ -271,11 +271,9 @@ pub fn cell_moments(tri: &RegularTriangulation, r: f64, density: &dyn RadialDens
     let edges = clipped_edges(tri, &centers, far, r, |_, _, x0, x1| density.fan_moment(x0, x1));
     let mut moment = vec![[0.0; 2]; tri.sites.len()];
     for e in &edges {
-        let (i, j) = (e.i as usize, e.j as usize);
-        for k in 0..2 {
-            moment[j][k] += e.value[k];
-            moment[i][k] -= e.value[k];
-        }
+        let (i, j, [x, y]) = (e.i as usize, e.j as usize, e.value);
+        moment[j] = [moment[j][0] + x, moment[j][1] + y];
+        moment[i] = [moment[i][0] - x, moment[i][1] - y];
     }
     for (v, m) in walked_cells(tri, &centers, far, r, &edges, |pieces, full| cell_moment(pieces, full, r, density)) {
         moment[v] = m;
