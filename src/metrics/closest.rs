@@ -53,12 +53,17 @@ pub fn closest_on_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -
 /// Faces are binned into a sparse uniform grid (a hash map of the occupied cells) whose cell
 /// is about two mean edge lengths, so a cell holds a handful of faces whatever the mesh's
 /// shape; a query searches shells of cells around its own until no closer face can exist.
+/// Faces whose bounding box is farther than the best distance so far are skipped, and
+/// [`SurfaceDistance::distance_near`] starts from the face nearest to the previous query,
+/// which for samples taken in order along a surface bounds the search at once.
 pub struct SurfaceDistance<'a> {
     mesh: &'a TriMesh,
     lo: [f64; 3],
     cell: f64,
     n: [i64; 3],
     cells: FastMap<u64, Vec<u32>>,
+    /// Each face's bounding box (lower and upper corners).
+    boxes: Vec<[[f64; 3]; 2]>,
 }
 
 impl<'a> SurfaceDistance<'a> {
@@ -82,15 +87,17 @@ impl<'a> SurfaceDistance<'a> {
         let cell = [0, 1, 2].map(|k| ext[k] / n[k] as f64).into_iter().fold(cell, f64::max);
         let mut cells: FastMap<u64, Vec<u32>> = FastMap::default();
         let index = |x: f64, k: usize| (((x - lo[k]) / cell).floor() as i64).clamp(0, n[k] - 1);
-        for (f, t) in mesh.faces.iter().enumerate() {
-            let q = t.map(|v| mesh.vertices[v as usize]);
-            let mut i0 = [0i64; 3];
-            let mut i1 = [0i64; 3];
-            for k in 0..3 {
-                let (a, b) = (q[0][k].min(q[1][k]).min(q[2][k]), q[0][k].max(q[1][k]).max(q[2][k]));
-                i0[k] = index(a, k);
-                i1[k] = index(b, k);
-            }
+        let boxes: Vec<[[f64; 3]; 2]> = mesh
+            .faces
+            .iter()
+            .map(|t| {
+                let q = t.map(|v| mesh.vertices[v as usize]);
+                [[0, 1, 2].map(|k| q[0][k].min(q[1][k]).min(q[2][k])), [0, 1, 2].map(|k| q[0][k].max(q[1][k]).max(q[2][k]))]
+            })
+            .collect();
+        for (f, b) in boxes.iter().enumerate() {
+            let i0 = [0, 1, 2].map(|k| index(b[0][k], k));
+            let i1 = [0, 1, 2].map(|k| index(b[1][k], k));
             for z in i0[2]..=i1[2] {
                 for y in i0[1]..=i1[1] {
                     for x in i0[0]..=i1[0] {
@@ -99,13 +106,31 @@ impl<'a> SurfaceDistance<'a> {
                 }
             }
         }
-        Self { mesh, lo, cell, n, cells }
+        Self { mesh, lo, cell, n, cells, boxes }
     }
 
     /// Distance from `p` to the surface.
     pub fn distance(&self, p: [f64; 3]) -> f64 {
+        self.distance_near(p, &mut None)
+    }
+
+    /// Distance from `p` to face `f`.
+    #[inline]
+    fn face_distance(&self, p: [f64; 3], f: u32) -> f64 {
+        let t = self.mesh.faces[f as usize].map(|v| self.mesh.vertices[v as usize]);
+        norm(sub(p, closest_on_triangle(p, t[0], t[1], t[2])))
+    }
+
+    /// [`SurfaceDistance::distance`], starting from the face `hint` (the nearest face of the
+    /// previous query of a run of nearby points) and leaving the nearest face there. The
+    /// distance is the same whatever the hint, up to rounding.
+    pub fn distance_near(&self, p: [f64; 3], hint: &mut Option<u32>) -> f64 {
         let c = [0, 1, 2].map(|k| (((p[k] - self.lo[k]) / self.cell).floor() as i64).clamp(0, self.n[k] - 1));
         let mut best = f64::INFINITY;
+        let mut nearest = *hint;
+        if let Some(f) = nearest.filter(|&f| (f as usize) < self.boxes.len()) {
+            best = self.face_distance(p, f);
+        }
         let max_ring = self.n[0].max(self.n[1]).max(self.n[2]);
         // Distance from p to the faces of its own cell's block, for the stopping test below.
         let inside = [0, 1, 2].map(|k| {
@@ -128,8 +153,14 @@ impl<'a> SurfaceDistance<'a> {
                         }
                         if let Some(faces) = self.cells.get(&key(x, y, z)) {
                             for &f in faces {
-                                let t = self.mesh.faces[f as usize].map(|v| self.mesh.vertices[v as usize]);
-                                best = best.min(norm(sub(p, closest_on_triangle(p, t[0], t[1], t[2]))));
+                                if box_distance2(&self.boxes[f as usize], p) >= best * best {
+                                    continue;
+                                }
+                                let d = self.face_distance(p, f);
+                                if d < best {
+                                    best = d;
+                                    nearest = Some(f);
+                                }
                             }
                         }
                     };
@@ -152,8 +183,20 @@ impl<'a> SurfaceDistance<'a> {
                 break;
             }
         }
+        *hint = nearest;
         best
     }
+}
+
+/// Squared distance from `p` to the box `b` (0 inside).
+#[inline]
+fn box_distance2(b: &[[f64; 3]; 2], p: [f64; 3]) -> f64 {
+    let mut d2 = 0.0;
+    for k in 0..3 {
+        let d = (b[0][k] - p[k]).max(0.0).max(p[k] - b[1][k]);
+        d2 += d * d;
+    }
+    d2
 }
 
 impl SurfaceDistance<'_> {
@@ -206,6 +249,15 @@ mod tests {
                     .fold(f64::INFINITY, f64::min);
                 let fast = index.distance(p);
                 assert!((fast - brute).abs() <= 1e-12 * (1.0 + brute), "point {p:?}: grid {fast}, brute force {brute}");
+                // Any hint, near or far or out of range, gives the same distance.
+                for h in [0, (i * 37) as u32 % mesh.n_faces() as u32, u32::MAX] {
+                    let mut hint = Some(h);
+                    let hinted = index.distance_near(p, &mut hint);
+                    assert!((hinted - brute).abs() <= 1e-12 * (1.0 + brute), "point {p:?} hint {h}: {hinted}, brute force {brute}");
+                    let f = hint.expect("nearest face") as usize;
+                    let t = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
+                    assert!((norm(sub(p, closest_on_triangle(p, t[0], t[1], t[2]))) - hinted).abs() <= 1e-12 * (1.0 + brute));
+                }
             }
         }
     }
