@@ -127,8 +127,8 @@ impl<'a> SurfaceDistance<'a> {
     pub fn distance_near(&self, p: [f64; 3], hint: &mut Option<u32>) -> f64 {
         let c = [0, 1, 2].map(|k| (((p[k] - self.lo[k]) / self.cell).floor() as i64).clamp(0, self.n[k] - 1));
         let mut best = f64::INFINITY;
-        let mut nearest = *hint;
-        if let Some(f) = nearest.filter(|&f| (f as usize) < self.boxes.len()) {
+        let mut nearest = hint.filter(|&f| (f as usize) < self.boxes.len());
+        if let Some(f) = nearest {
             best = self.face_distance(p, f);
         }
         let max_ring = self.n[0].max(self.n[1]).max(self.n[2]);
