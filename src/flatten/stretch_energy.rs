@@ -97,17 +97,23 @@ fn energy_with_areas(source: &[f64], faces: &[[u32; 3]], f: &[[f64; 2]]) -> f64 
 
 /// The gradient `2 L_S(f) f` of [`stretch_energy`].
 pub fn stretch_gradient(vertices: &[[f64; 3]], faces: &[[u32; 3]], f: &[[f64; 2]]) -> Vec<[f64; 2]> {
-    let mut g = vec![[0.0; 2]; f.len()];
-    for (t, w) in faces.iter().zip(corner_weights(&source_areas(vertices, faces), faces, f)) {
+    let weights = corner_weights(&source_areas(vertices, faces), faces, f);
+    laplacian_times(faces, &weights, f).into_iter().map(|x| [2.0 * x[0], 2.0 * x[1]]).collect()
+}
+
+/// `L(f) f` at every vertex for the Laplacian of the corner `weights`.
+fn laplacian_times(faces: &[[u32; 3]], weights: &[[f64; 3]], f: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut out = vec![[0.0; 2]; f.len()];
+    for (t, w) in faces.iter().zip(weights) {
         for k in 0..3 {
             let (i, j) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
             for (a, b) in [(i, j), (j, i)] {
-                g[a][0] += 2.0 * w[k] * (f[a][0] - f[b][0]);
-                g[a][1] += 2.0 * w[k] * (f[a][1] - f[b][1]);
+                out[a][0] += w[k] * (f[a][0] - f[b][0]);
+                out[a][1] += w[k] * (f[a][1] - f[b][1]);
             }
         }
     }
-    g
+    out
 }
 
 /// Per face, the weight of the edge opposite each corner (`source`: the faces' areas).
@@ -249,15 +255,10 @@ pub(crate) fn stretch_energy_map_with(
         } else {
             // The residual L_S(f) f of the free rows, solved with the last factorization.
             let mut rhs = vec![vec![0.0; n_free], vec![0.0; n_free]];
-            for (t, w) in faces.iter().zip(&weights) {
-                for k in 0..3 {
-                    let (i, j) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
-                    for (a, b) in [(i, j), (j, i)] {
-                        if !is_fixed[a] {
-                            rhs[0][index[a]] += w[k] * (f[a][0] - f[b][0]);
-                            rhs[1][index[a]] += w[k] * (f[a][1] - f[b][1]);
-                        }
-                    }
+            for (v, r) in laplacian_times(faces, &weights, &f).into_iter().enumerate() {
+                if !is_fixed[v] {
+                    rhs[0][index[v]] = r[0];
+                    rhs[1][index[v]] = r[1];
                 }
             }
             rhs

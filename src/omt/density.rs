@@ -134,31 +134,29 @@ impl RadialDensity for StereographicDensity {
     }
 
     fn fan_mass(&self, a: [f64; 2], b: [f64; 2]) -> f64 {
-        // In polar coordinates about the foot of the perpendicular, the mass of the fan is
-        // int 2 rho^2 / (1 + rho^2) d theta = [2 d / q atan(s / q)] with q = sqrt(1 + d^2).
-        let Some((d, sa, sb, sign)) = line_frame(a, b) else { return 0.0 };
-        let q = (1.0 + d * d).sqrt();
-        sign * 2.0 * d / q * atan_difference(sb / q, sa / q)
+        stereographic_fan_and_segment(a, b).0
     }
 
     fn fan_mass_and_segment_integral(&self, a: [f64; 2], b: [f64; 2]) -> (f64, f64) {
-        // The two closed forms share the frame and the arctangent.
-        let Some((d, sa, sb, sign)) = line_frame(a, b) else { return (0.0, 0.0) };
-        let q2 = 1.0 + d * d;
-        let q = q2.sqrt();
-        let angle = atan_difference(sb / q, sa / q);
-        let rational = |s: f64| s / (2.0 * q2 * (q2 + s * s));
-        (sign * 2.0 * d / q * angle, 4.0 * (rational(sb) - rational(sa) + angle / (2.0 * q2 * q)))
+        stereographic_fan_and_segment(a, b)
     }
 
     fn segment_integral(&self, a: [f64; 2], b: [f64; 2]) -> f64 {
-        // int 4 / (q^2 + s^2)^2 ds with q^2 = 1 + d^2.
-        let Some((d, sa, sb, _)) = line_frame(a, b) else { return 0.0 };
-        let q2 = 1.0 + d * d;
-        let q = q2.sqrt();
-        let rational = |s: f64| s / (2.0 * q2 * (q2 + s * s));
-        4.0 * (rational(sb) - rational(sa) + atan_difference(sb / q, sa / q) / (2.0 * q2 * q))
+        stereographic_fan_and_segment(a, b).1
     }
+}
+
+/// The stereographic density's fan mass of `(0, a, b)` and `int sigma ds` along `ab`, which
+/// share the frame and the arctangent. In polar coordinates about the foot of the
+/// perpendicular, the fan's mass is `int 2 rho^2 / (1 + rho^2) d theta = [2 d / q atan(s / q)]`
+/// and the segment's integral `int 4 / (q^2 + s^2)^2 ds`, with `q^2 = 1 + d^2`.
+fn stereographic_fan_and_segment(a: [f64; 2], b: [f64; 2]) -> (f64, f64) {
+    let Some((d, sa, sb, sign)) = line_frame(a, b) else { return (0.0, 0.0) };
+    let q2 = 1.0 + d * d;
+    let q = q2.sqrt();
+    let angle = atan_difference(sb / q, sa / q);
+    let rational = |s: f64| s / (2.0 * q2 * (q2 + s * s));
+    (sign * 2.0 * d / q * angle, 4.0 * (rational(sb) - rational(sa) + angle / (2.0 * q2 * q)))
 }
 
 /// `atan(x) - atan(y)` by one `atan2` (the difference of two angles in `(-pi/2, pi/2)` is
