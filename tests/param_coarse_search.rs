@@ -54,12 +54,43 @@ fn brain12k_closed() {
 
 #[test]
 fn hippocampus_closed() {
-    // 6k vertices: the smallest closed mesh the default coarse search applies to.
     compare("closed_hippocampus_choi.obj.gz", 0.01);
 }
 
 #[test]
 fn left_ventricle_open() {
-    // 4.2k vertices: the smallest open one.
+    // 4.2k vertices: the smallest open mesh the default coarse search applies to.
     compare("open_lv_endo_rabbit_chaste.obj.gz", 0.1);
+}
+
+#[test]
+fn bird_skull_closed() {
+    // 2.1k vertices: closed surfaces search on a quarter of their vertices at most.
+    compare("closed_bird_skull_CPallidusA_choi.obj.gz", 0.01);
+}
+
+#[test]
+fn bunny_closed() {
+    compare("closed_bunny_npm.obj.gz", 0.01);
+}
+
+#[test]
+fn coarse_level_size_follows_the_mesh_size() {
+    use capmesh::cap::parameterize::{search_level_sites, DEFAULT_SEARCH_SITES, MIN_SEARCH_SITES};
+    let d = DEFAULT_SEARCH_SITES;
+    for closed in [false, true] {
+        assert_eq!(search_level_sites(53_054, d, closed), Some(53_054 / 16));
+        assert_eq!(search_level_sites(12_502, d, closed), Some(d));
+        assert_eq!(search_level_sites(53_054, 0, closed), None);
+        // An explicit small request is honoured down to n / 16.
+        assert_eq!(search_level_sites(2_000, 100, closed), Some(125));
+    }
+    // Open surfaces: only meshes of more than twice the requested sites.
+    assert_eq!(search_level_sites(6_002, d, false), Some(d));
+    assert_eq!(search_level_sites(2_105, d, false), None);
+    // Closed ones: a quarter of the vertices at most, from 2 * MIN_SEARCH_SITES vertices.
+    assert_eq!(search_level_sites(6_002, d, true), Some(1_500));
+    assert_eq!(search_level_sites(2_105, d, true), Some(526));
+    assert_eq!(search_level_sites(600, d, true), Some(MIN_SEARCH_SITES));
+    assert_eq!(search_level_sites(500, d, true), None);
 }

@@ -77,10 +77,10 @@ enum Command {
         /// the bottom (lower input Z) or at the top.
         #[arg(long, default_value = "best")]
         puncture_end: capmesh::cap::PunctureEnd,
-        /// Transport sites of the radius search: meshes with more than twice as many
-        /// vertices search on a coarse level of at most max(this, vertices / 16) sites and
-        /// solve the full problem at r* only (0: search at full resolution, the paper's
-        /// method).
+        /// Transport sites of the radius search: a mesh of n vertices searches on a coarse
+        /// level of at most max(this, n / 16) sites (closed surfaces: max(min(this, max(n /
+        /// 4, 250)), n / 16)), when that is fewer than n / 2, and solves the full problem at
+        /// r* only (0: search at full resolution, the paper's method).
         #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_SEARCH_SITES)]
         search_sites: usize,
     },
