@@ -3,18 +3,20 @@
 //! * `open N`: a bumpy height-field disk (`grid_disk` rings, near-equilateral triangles) of
 //!   about N vertices: `z = 0.25 sin(3x) cos(4y) + 0.3 x^2`;
 //! * `closed S`: a bumpy ellipsoid, the icosphere of `S` subdivisions (`10 * 4^S + 2`
-//!   vertices) with radius `1 + 0.08 sin(5x) sin(4y) sin(3z)` and axes (1, 0.7, 1.4).
+//!   vertices) with radius `1 + 0.08 sin(5x) sin(4y) sin(3z)` and axes (1, 0.7, 1.4);
+//! * `geodesic N`: the same ellipsoid on the geodesic sphere of about N vertices
+//!   (`10 f^2 + 2`, frequency `f` the nearest to `sqrt((N - 2) / 10)`).
 //!
 //! `cargo run --release --example synth_mesh -- open 100000 out.ply`
 
 use capmesh::io::write_mesh;
-use capmesh::mesh::shapes::{grid_disk, icosphere};
+use capmesh::mesh::shapes::{geodesic_sphere, grid_disk, icosphere};
 use std::path::Path;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() != 4 {
-        eprintln!("usage: synth_mesh open N OUT | closed SUBDIVISIONS OUT");
+        eprintln!("usage: synth_mesh open N OUT | closed SUBDIVISIONS OUT | geodesic N OUT");
         std::process::exit(2);
     }
     let size: usize = args[2].parse().unwrap_or_else(|_| {
@@ -31,16 +33,10 @@ fn main() {
             }
             m
         }
-        "closed" => {
-            let mut m = icosphere(size);
-            for p in &mut m.vertices {
-                let r = 1.0 + 0.08 * (5.0 * p[0]).sin() * (4.0 * p[1]).sin() * (3.0 * p[2]).sin();
-                *p = [r * p[0], 0.7 * r * p[1], 1.4 * r * p[2]];
-            }
-            m
-        }
+        "closed" => bumpy_ellipsoid(icosphere(size)),
+        "geodesic" => bumpy_ellipsoid(geodesic_sphere((((size.max(12) - 2) as f64 / 10.0).sqrt().round() as usize).max(1))),
         other => {
-            eprintln!("synth_mesh: unknown kind '{other}' (open or closed)");
+            eprintln!("synth_mesh: unknown kind '{other}' (open, closed or geodesic)");
             std::process::exit(2)
         }
     };
@@ -50,4 +46,14 @@ fn main() {
         std::process::exit(1);
     }
     println!("{} vertices, {} faces -> {}", mesh.vertices.len(), mesh.faces.len(), args[3]);
+}
+
+/// The unit sphere `m` made a bumpy ellipsoid: radius `1 + 0.08 sin(5x) sin(4y) sin(3z)`,
+/// axes (1, 0.7, 1.4).
+fn bumpy_ellipsoid(mut m: capmesh::mesh::TriMesh) -> capmesh::mesh::TriMesh {
+    for p in &mut m.vertices {
+        let r = 1.0 + 0.08 * (5.0 * p[0]).sin() * (4.0 * p[1]).sin() * (3.0 * p[2]).sin();
+        *p = [r * p[0], 0.7 * r * p[1], 1.4 * r * p[2]];
+    }
+    m
 }

@@ -5,7 +5,7 @@ use capmesh::mesh::geometry::{
 };
 use capmesh::mesh::repair::{remove_unreferenced, weld_coincident, zero_area_faces, REMOVED};
 use capmesh::mesh::shapes::{
-    annulus, grid_disk, icosphere, spherical_cap, spherical_cap_sectors, torus, uv_sphere,
+    annulus, geodesic_sphere, grid_disk, icosphere, spherical_cap, spherical_cap_sectors, torus, uv_sphere,
 };
 use capmesh::mesh::topology::{edge_faces, is_boundary_vertex, vertex_neighbors};
 use capmesh::mesh::{inspect, validate, SurfaceKind, Topology, TriMesh};
@@ -153,6 +153,31 @@ fn closed_spheres() {
     assert_eq!(ico.n_faces(), 20 * 64);
     assert!((signed_volume(&ico) - 4.0 / 3.0 * std::f64::consts::PI).abs() < 0.05);
     assert!(min_angle_deg(&ico) > 45.0);
+}
+
+#[test]
+fn geodesic_spheres_have_any_frequency() {
+    for f in [1, 2, 3, 7, 12] {
+        let m = geodesic_sphere(f);
+        assert_eq!(m.n_vertices(), 10 * f * f + 2, "f = {f}");
+        assert_eq!(m.n_faces(), 20 * f * f, "f = {f}");
+        let (kind, topo) = validate(&m).unwrap_or_else(|e| panic!("f = {f}: {e}"));
+        assert_eq!(kind, SurfaceKind::ClosedSphere);
+        assert_eq!(topo.euler_characteristic, 2);
+        assert!(all_outward(&m), "f = {f}");
+        assert!(m.vertices.iter().all(|&p| (dot(p, p) - 1.0).abs() < 1e-12));
+        assert!(min_angle_deg(&m) > 40.0, "f = {f}: {}", min_angle_deg(&m));
+    }
+    // Frequency 1 is the icosahedron; frequency 2 the icosphere of one subdivision.
+    let key = |m: &TriMesh| {
+        let mut k: Vec<[i64; 3]> = m.vertices.iter().map(|p| p.map(|x| (x * 1e9).round() as i64)).collect();
+        k.sort_unstable();
+        k
+    };
+    assert_eq!(key(&geodesic_sphere(1)), key(&icosphere(0)));
+    assert_eq!(key(&geodesic_sphere(2)), key(&icosphere(1)));
+    let g = geodesic_sphere(12);
+    assert!((signed_volume(&g) - 4.0 / 3.0 * std::f64::consts::PI).abs() < 0.05);
 }
 
 #[test]

@@ -161,9 +161,8 @@ pub fn uv_sphere(rings: usize, sectors: usize) -> TriMesh {
     ring_stack(&stack)
 }
 
-/// Closed unit sphere: an icosahedron subdivided `subdivisions` times (each face into four),
-/// `20 * 4^s` faces. `subdivisions` is clamped to at most 9.
-pub fn icosphere(subdivisions: usize) -> TriMesh {
+/// The regular icosahedron inscribed in the unit sphere, faces oriented outwards.
+fn icosahedron() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     let phi = (1.0 + 5f64.sqrt()) / 2.0;
     let mut vertices: Vec<[f64; 3]> = Vec::new();
     for s1 in [-1.0, 1.0] {
@@ -193,7 +192,13 @@ pub fn icosphere(subdivisions: usize) -> TriMesh {
             }
         }
     }
-    let mut vertices: Vec<[f64; 3]> = vertices.iter().map(|&p| scale(p, 1.0 / norm(p))).collect();
+    (vertices.iter().map(|&p| scale(p, 1.0 / norm(p))).collect(), faces)
+}
+
+/// Closed unit sphere: an icosahedron subdivided `subdivisions` times (each face into four),
+/// `20 * 4^s` faces. `subdivisions` is clamped to at most 9.
+pub fn icosphere(subdivisions: usize) -> TriMesh {
+    let (mut vertices, mut faces) = icosahedron();
     for _ in 0..subdivisions.min(9) {
         let mut midpoint: HashMap<(u32, u32), u32> = HashMap::new();
         let mut mid = |a: u32, b: u32, vertices: &mut Vec<[f64; 3]>| {
@@ -211,6 +216,75 @@ pub fn icosphere(subdivisions: usize) -> TriMesh {
             next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
         }
         faces = next;
+    }
+    TriMesh::new(vertices, faces)
+}
+
+/// Most frequency of [`geodesic_sphere`] (20 million faces).
+pub const MAX_GEODESIC_FREQUENCY: usize = 1000;
+
+/// Closed unit sphere: every face of an icosahedron split into `frequency^2` triangles by a
+/// grid of `frequency` steps along each side, the grid points projected onto the sphere
+/// (a class I geodesic sphere). `10 f^2 + 2` vertices and `20 f^2` faces for any frequency
+/// `f` (clamped to `1..=MAX_GEODESIC_FREQUENCY`), where [`icosphere`] has only powers of 4.
+pub fn geodesic_sphere(frequency: usize) -> TriMesh {
+    let f = frequency.clamp(1, MAX_GEODESIC_FREQUENCY);
+    let (corners, ico_faces) = icosahedron();
+    let mut vertices = corners.clone();
+    // Points inside an icosahedron edge (a, b), a < b, numbered from a.
+    let mut edge_points: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+    let mut faces = Vec::with_capacity(20 * f * f);
+    let on_sphere = |p: [f64; 3]| scale(p, 1.0 / norm(p));
+    for &[a, b, c] in &ico_faces {
+        let [pa, pb, pc] = [a, b, c].map(|v| corners[v as usize]);
+        // The point with `i` steps towards b and `j` towards c: index in `vertices`.
+        let mut grid = vec![0u32; (f + 1) * (f + 2) / 2];
+        let at = |i: usize, j: usize| i * (2 * f + 3 - i) / 2 + j;
+        for i in 0..=f {
+            for j in 0..=f - i {
+                let k = f - i - j;
+                let index = match (i, j, k) {
+                    (0, 0, _) => a,
+                    (_, 0, 0) => b,
+                    (0, _, 0) => c,
+                    _ => {
+                        // On a side of the icosahedron face: shared with the neighbour.
+                        let side = if j == 0 { Some((a, b, i)) } else if i == 0 { Some((a, c, j)) } else if k == 0 { Some((b, c, j)) } else { None };
+                        match side {
+                            Some((u, v, t)) => {
+                                let (lo, hi, t) = if u < v { (u, v, t) } else { (v, u, f - t) };
+                                let points = edge_points.entry((lo, hi)).or_insert_with(|| {
+                                    let (p, q) = (corners[lo as usize], corners[hi as usize]);
+                                    (1..f)
+                                        .map(|s| {
+                                            let w = s as f64 / f as f64;
+                                            vertices.push(on_sphere([0, 1, 2].map(|d| (1.0 - w) * p[d] + w * q[d])));
+                                            (vertices.len() - 1) as u32
+                                        })
+                                        .collect()
+                                });
+                                points[t - 1]
+                            }
+                            None => {
+                                let (wb, wc) = (i as f64 / f as f64, j as f64 / f as f64);
+                                vertices.push(on_sphere([0, 1, 2].map(|d| (1.0 - wb - wc) * pa[d] + wb * pb[d] + wc * pc[d])));
+                                (vertices.len() - 1) as u32
+                            }
+                        }
+                    }
+                };
+                grid[at(i, j)] = index;
+            }
+        }
+        // Triangles of the grid, oriented like (a, b, c).
+        for i in 0..f {
+            for j in 0..f - i {
+                faces.push([grid[at(i, j)], grid[at(i + 1, j)], grid[at(i, j + 1)]]);
+                if i + j + 1 < f {
+                    faces.push([grid[at(i + 1, j)], grid[at(i + 1, j + 1)], grid[at(i, j + 1)]]);
+                }
+            }
+        }
     }
     TriMesh::new(vertices, faces)
 }
