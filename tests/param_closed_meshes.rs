@@ -222,3 +222,35 @@ fn logarithmic_newton_steps_save_iterations_and_keep_the_map() {
     assert!((ra.area_distortion.mean_abs - rb.area_distortion.mean_abs).abs() < 0.05 * rb.area_distortion.mean_abs);
     assert_eq!(ra.flipped_faces, 0);
 }
+
+/// `PunctureEnd::Best` searches both ends and finishes the one whose search map is the more
+/// area-preserving: on the bunny, whose ends differ most (mean |d_area| 0.04 against 0.16),
+/// it keeps the better end's map, reports both searches and only the kept end's final
+/// distortion. With a fixed domain (no search) both ends are finished and compared.
+#[test]
+fn best_puncture_end_finishes_the_better_searched_end() {
+    use capmesh::cap::PunctureEnd;
+    let mesh = read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
+    let run = |end: PunctureEnd, domain: Domain| {
+        let options = ParamOptions { puncture_end: end, ..ParamOptions::default() }.with_domain(domain);
+        parameterize(&mesh, &options, &NoProgress).unwrap_or_else(|e| panic!("{end:?}: {e}")).report
+    };
+    let (best, bottom, top) = (run(PunctureEnd::Best, Domain::Adaptive), run(PunctureEnd::Bottom, Domain::Adaptive), run(PunctureEnd::Top, Domain::Adaptive));
+    let better = bottom.area_distortion.mean_abs.min(top.area_distortion.mean_abs);
+    let worse = bottom.area_distortion.mean_abs.max(top.area_distortion.mean_abs);
+    eprintln!("bunny: best {:.4}, bottom {:.4}, top {:.4}, trials {:?}", best.area_distortion.mean_abs, bottom.area_distortion.mean_abs, top.area_distortion.mean_abs, best.puncture_trials);
+    assert!(worse > 2.0 * better, "the bunny's ends should differ: {better} and {worse}");
+    assert_eq!(best.area_distortion.mean_abs, better);
+    assert_eq!(best.puncture_trials.len(), 2);
+    let searched: Vec<f64> = best.puncture_trials.iter().map(|t| t.search_area_distortion.expect("both ends searched")).collect();
+    let kept: Vec<_> = best.puncture_trials.iter().filter(|t| t.mean_abs_area_distortion.is_some()).collect();
+    assert_eq!(kept.len(), 1, "only the kept end is finished");
+    assert_eq!(kept[0].mean_abs_area_distortion, Some(better));
+    assert_eq!(kept[0].search_area_distortion, Some(searched[0].min(searched[1])));
+    assert_eq!(Some(kept[0].axis), best.puncture.as_ref().map(|p| p.axis));
+    // A fixed domain has no search: both ends finished, the better kept.
+    let sphere = run(PunctureEnd::Best, Domain::Sphere);
+    assert!(sphere.puncture_trials.iter().all(|t| t.search_area_distortion.is_none() && t.mean_abs_area_distortion.is_some()));
+    let finals: Vec<f64> = sphere.puncture_trials.iter().filter_map(|t| t.mean_abs_area_distortion).collect();
+    assert_eq!(sphere.area_distortion.mean_abs, finals[0].min(finals[1]));
+}

@@ -9,6 +9,7 @@ pub mod domain;
 pub mod kernel_untangle;
 pub mod parameterize;
 pub mod planar_transport;
+pub mod puncture_end;
 pub mod regularize;
 pub mod stereographic;
 pub mod untangle;

@@ -13,6 +13,7 @@ use super::brent;
 use super::coarse_level::CoarseLevel;
 use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
 use super::planar_transport::{PlanarTransport, TransportMap};
+pub use super::puncture_end::{PunctureEnd, PunctureTrial};
 use super::regularize::{regularise, Smoothing, SmoothingTrial, PUNCTURE_HELD_RINGS};
 use super::untangle::UntangleReport;
 use super::stereographic::{inverse_stereographic, radius_of_z_star, z_star_of_radius};
@@ -198,42 +199,6 @@ pub fn search_level_sites(n: usize, search_sites: usize, closed: bool) -> Option
 /// it below 0.2 (README).
 pub const DEFAULT_AREA_REFINEMENT: usize = super::area_refine::DEFAULT_SWEEPS;
 
-/// Where a closed surface is punctured (paper Sec. 3.2.1 punctures "the bottom" after aligning
-/// the principal axis with `Z`; which end is the bottom is a convention).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum PunctureEnd {
-    /// Map with the puncture at each end of the principal axis and keep the map with the
-    /// smaller mean `|d_area|` (twice the work). The result does not depend on how the input
-    /// is oriented, and it is better on the shared meshes (bunny 0.039 instead of 0.184).
-    #[default]
-    Best,
-    /// The end with the lower input `Z` (the paper's "bottom" for an input standing along `Z`).
-    Bottom,
-    /// The other end.
-    Top,
-}
-
-impl std::str::FromStr for PunctureEnd {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "best" => Ok(PunctureEnd::Best),
-            "bottom" => Ok(PunctureEnd::Bottom),
-            "top" => Ok(PunctureEnd::Top),
-            _ => Err(format!("unknown puncture end '{s}': use best, bottom or top")),
-        }
-    }
-}
-
-/// One end tried by [`PunctureEnd::Best`].
-#[derive(Debug, Clone, Copy, serde::Serialize)]
-pub struct PunctureTrial {
-    /// The principal axis direction called "up" for this trial.
-    pub axis: [f64; 3],
-    /// Mean `|d_area|` of the map.
-    pub mean_abs_area_distortion: f64,
-}
-
 /// Initial flattening of open surfaces.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum OpenInitialMap {
@@ -377,42 +342,57 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
     match options.puncture_end {
         PunctureEnd::Bottom => parameterize_once(mesh, &at(false), progress),
         PunctureEnd::Top => parameterize_once(mesh, &at(true), progress),
-        PunctureEnd::Best => {
-            let start = Instant::now();
-            // Open surfaces have no puncture: one map. Closed ones map both ends at once (the
-            // two maps are independent; on two cores this halves the wall time).
-            let (first, second) = if matches!(validate(mesh), Ok((SurfaceKind::ClosedSphere, _))) {
-                let (a, b) = rayon::join(|| parameterize_once(mesh, &at(false), progress), || parameterize_once(mesh, &at(true), progress));
-                (a?, Some(b))
-            } else {
-                (parameterize_once(mesh, &at(false), progress)?, None)
-            };
-            let Some(p) = first.report.puncture.as_ref() else { return Ok(first) };
-            let trial = |m: &CapMap, axis: [f64; 3]| PunctureTrial { axis, mean_abs_area_distortion: m.report.area_distortion.mean_abs };
-            let first_trial = trial(&first, p.axis);
-            let second = match second.unwrap_or_else(|| parameterize_once(mesh, &at(true), progress)) {
-                Ok(m) => m,
-                Err(e @ Error::Cancelled(_)) => return Err(e),
-                // The other end could not be mapped (e.g. no regular quad there): keep this one.
-                Err(_) => {
-                    let mut kept = first;
-                    kept.report.puncture_trials = vec![first_trial];
-                    return Ok(kept);
-                }
-            };
-            let second_axis = second.report.puncture.as_ref().map_or([0.0; 3], |q| q.axis);
-            let trials = vec![first_trial, trial(&second, second_axis)];
-            let key = |m: &CapMap| (m.report.flipped_faces, m.report.area_distortion.mean_abs);
-            let mut kept = if key(&second) < key(&first) { second } else { first };
-            kept.report.puncture_trials = trials;
-            kept.report.seconds = start.elapsed().as_secs_f64();
-            Ok(kept)
-        }
+        PunctureEnd::Best => super::puncture_end::parameterize_best_end(mesh, &at(false), &at(true), progress),
     }
 }
 
 /// [`parameterize`] with the puncture end fixed by `options.closed.puncture`.
-fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+pub(super) fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+    let searched = search_radius(mesh, options, progress)?;
+    finish(mesh, searched, options, progress)
+}
+
+/// A parameterization up to its radius (the first half of [`parameterize_once`]): the checked
+/// and welded mesh, its initial disk map and the radius search.
+pub(super) struct Searched {
+    start: Instant,
+    welded: repair::Welded,
+    kind: SurfaceKind,
+    faces: Vec<[u32; 3]>,
+    disk: Vec<[f64; 2]>,
+    on_boundary: Vec<bool>,
+    target: Vec<f64>,
+    flatten_report: FlattenReport,
+    pub(super) puncture: Option<Puncture>,
+    radius: f64,
+    /// The transport map at `radius` when the search solved it at full resolution.
+    map: Option<TransportMap>,
+    /// Mean `|d_area|` of the search's map at `r*` on the cap (the coarse level's map
+    /// prolonged to every vertex when the search ran there); `None` without a search.
+    pub(super) search_area_distortion: Option<f64>,
+    curve: Vec<RadiusSample>,
+    search_sites: Option<usize>,
+    coarse_newton_iterations: usize,
+    /// Full-resolution Newton iterations and solves so far, and symbolic factorizations at
+    /// either level.
+    newton_iterations: usize,
+    solves: usize,
+    symbolic_factorizations: usize,
+    flatten_seconds: f64,
+    transport_seconds: f64,
+}
+
+/// The best radius of a search so far: its energy, and its full-resolution map when the
+/// search runs at full resolution, else the coarse map prolonged to every vertex.
+struct SearchBest {
+    r: f64,
+    energy: f64,
+    map: Option<TransportMap>,
+    prolonged: Vec<[f64; 2]>,
+}
+
+/// Check, weld and flatten `mesh`, and find the radius (the search of the adaptive domain).
+pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<Searched, Error> {
     let start = Instant::now();
     progress::check(progress, Stage::Validate, 0.0, "checking the mesh")?;
     // Hard errors of the input as given (indices out of range, repeated indices in a face,
@@ -460,15 +440,14 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
     let t_ot = Instant::now();
     let mut curve = Vec::new();
     let (mut search_sites, mut coarse_newton_iterations, mut coarse_symbolic) = (None, 0, 0);
+    let mut search_area_distortion = None;
     let (radius, transported) = match options.domain {
-        Domain::Disk => (1.0, transport.map_at(1.0, progress)?),
+        Domain::Disk => (1.0, None),
         Domain::Adaptive => {
             let coarse = search_level_sites(disk.len(), options.search_sites, kind == SurfaceKind::ClosedSphere).and_then(|sites| CoarseLevel::build(&disk, &faces, &on_boundary, &target, sites));
             let mut coarse_transport = coarse.as_ref().map(|c| PlanarTransport::new(&c.sites, &c.on_boundary, &c.masses, density, options.transport.clone()));
             search_sites = coarse.as_ref().map(CoarseLevel::len);
-            // The best radius and energy, with its full-resolution map when the search ran
-            // at full resolution.
-            let mut best: Option<(f64, f64, Option<TransportMap>)> = None;
+            let mut best: Option<SearchBest> = None;
             let mut evals = 0usize;
             let max_evals = options.max_search_evaluations;
             let search_tolerance = options.search_tolerance.max(options.transport.tolerance);
@@ -487,24 +466,25 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
                 let r = radius_of_z_star(z);
                 evals += 1;
                 progress::check(progress, Stage::RadiusSearch, evals as f64 / max_evals as f64, &format!("r = {r:.4}, Z* = {z:.4}"))?;
-                let (centroids, iterations, map) = match (coarse.as_ref(), coarse_transport.as_mut()) {
+                let (prolonged, iterations, map) = match (coarse.as_ref(), coarse_transport.as_mut()) {
                     (Some(level), Some(ct)) => {
                         let map = ct.map_at_tolerance(r, search_tolerance, progress)?;
                         (level.prolong(&map.centroids), map.report.iterations, None)
                     }
                     _ => {
                         let map = transport.map_at_tolerance(r, search_tolerance, progress)?;
-                        (map.centroids.clone(), map.report.iterations, Some(map))
+                        (Vec::new(), map.report.iterations, Some(map))
                     }
                 };
+                let centroids: &[[f64; 2]] = map.as_ref().map_or(&prolonged, |m| &m.centroids);
                 let e = if kind == SurfaceKind::OpenDisk {
-                    conformal_energy(&work.vertices, &centroids, &faces)
+                    conformal_energy(&work.vertices, centroids, &faces)
                 } else {
-                    conformal_energy_surface_weighted(&work.vertices, &centroids, &faces)
+                    conformal_energy_surface_weighted(&work.vertices, centroids, &faces)
                 };
                 curve.push(RadiusSample { r, z_star: z, energy: e, newton_iterations: iterations });
-                if best.as_ref().map_or(true, |b| e < b.1) {
-                    best = Some((r, e, map));
+                if best.as_ref().map_or(true, |b| e < b.energy) {
+                    best = Some(SearchBest { r, energy: e, map, prolonged });
                 }
                 Ok(e)
             };
@@ -519,18 +499,67 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
             }
             coarse_newton_iterations = coarse_transport.as_ref().map_or(0, |t| t.newton_iterations);
             coarse_symbolic = coarse_transport.as_ref().map_or(0, |t| t.symbolic_factorizations);
-            let (r, _, map) = best.ok_or_else(|| Error::Unsupported("radius search made no evaluation".into()))?;
+            let SearchBest { r, map, prolonged, .. } = best.ok_or_else(|| Error::Unsupported("radius search made no evaluation".into()))?;
+            let on_cap: Vec<[f64; 3]> = map.as_ref().map_or(&prolonged, |m| &m.centroids).iter().map(|&q| inverse_stereographic(q)).collect();
+            search_area_distortion = Some(Stats::of(area_distortion(&work.vertices, &on_cap, &faces)).mean_abs);
             match map {
-                Some(map) if search_tolerance <= options.transport.tolerance => (r, map),
-                _ => (r, transport.map_at(r, progress)?),
+                Some(map) if search_tolerance <= options.transport.tolerance => (r, Some(map)),
+                Some(_) => (r, Some(transport.map_at(r, progress)?)),
+                // A coarse search: the full problem is solved by `finish`.
+                None => (r, None),
             }
         }
-        fixed => {
-            let r = fixed.fixed_radius().unwrap_or(1.0);
-            (r, transport.map_at(r, progress)?)
-        }
+        fixed => (fixed.fixed_radius().unwrap_or(1.0), None),
     };
     let transport_seconds = t_ot.elapsed().as_secs_f64();
+    let (newton_iterations, solves, symbolic) = (transport.newton_iterations, transport.solves, transport.symbolic_factorizations);
+    drop(transport);
+    Ok(Searched {
+        start,
+        kind,
+        faces,
+        disk,
+        on_boundary,
+        target,
+        flatten_report,
+        puncture,
+        radius,
+        map: transported,
+        search_area_distortion,
+        curve,
+        search_sites,
+        coarse_newton_iterations,
+        newton_iterations,
+        solves,
+        symbolic_factorizations: symbolic + coarse_symbolic,
+        flatten_seconds,
+        transport_seconds,
+        welded,
+    })
+}
+
+/// The second half of [`parameterize_once`]: the transport map at the searched radius (unless
+/// the search solved it), its regularisation and fold repair, the area refinement and the
+/// report.
+pub(super) fn finish(mesh: &TriMesh, s: Searched, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+    let Searched { start, welded, kind, faces, disk, on_boundary, target, flatten_report, puncture, radius, map, curve, search_sites, coarse_newton_iterations, .. } = s;
+    let work = &welded.mesh;
+    let t_ot = Instant::now();
+    let (mut newton_iterations, mut solves, mut symbolic) = (s.newton_iterations, s.solves, s.symbolic_factorizations);
+    let transported = match map {
+        Some(map) => map,
+        None => {
+            let (stereo, uniform) = (StereographicDensity, UniformDensity);
+            let density: &dyn RadialDensity = if options.domain == Domain::Disk { &uniform } else { &stereo };
+            let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, density, options.transport.clone());
+            let map = transport.map_at(radius, progress)?;
+            newton_iterations += transport.newton_iterations;
+            solves += transport.solves;
+            symbolic += transport.symbolic_factorizations;
+            map
+        }
+    };
+    let transport_seconds = s.transport_seconds + t_ot.elapsed().as_secs_f64();
     let to_cap = |p: &[[f64; 2]]| -> Vec<[f64; 3]> {
         if options.domain == Domain::Disk {
             lift(p)
@@ -569,17 +598,17 @@ fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Prog
         area_refinement: refinement,
         smoothing_kappa: kappa,
         smoothing_trials: trials,
-        newton_iterations: transport.newton_iterations,
+        newton_iterations,
         search_sites,
         coarse_newton_iterations,
-        transport_solves: transport.solves,
-        transport_symbolic_factorizations: transport.symbolic_factorizations + coarse_symbolic,
+        transport_solves: solves,
+        transport_symbolic_factorizations: symbolic,
         radius_curve: curve,
         flatten: flatten_report,
         puncture,
         puncture_trials: Vec::new(),
         seconds: start.elapsed().as_secs_f64(),
-        flatten_seconds,
+        flatten_seconds: s.flatten_seconds,
         transport_seconds,
         regularise_seconds,
         refine_seconds,

@@ -73,8 +73,8 @@ enum Command {
         /// Sweeps of the face-level area refinement after transport (0 is the paper's map).
         #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_AREA_REFINEMENT)]
         area_refinement: usize,
-        /// Closed surfaces: puncture at the best end of the principal axis (maps twice), at
-        /// the bottom (lower input Z) or at the top.
+        /// Closed surfaces: puncture at the best end of the principal axis (searches the
+        /// radius from both, finishes the better), at the bottom (lower input Z) or at the top.
         #[arg(long, default_value = "best")]
         puncture_end: capmesh::cap::PunctureEnd,
         /// Transport sites of the radius search: a mesh of n vertices searches on a coarse
