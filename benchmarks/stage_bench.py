@@ -206,7 +206,7 @@ def write_report(rows, info):
             f"{fmt(o['pullback'])} | {fmt(o['equalize'])} | {fmt(o['metrics'])} | {fmt(o['param_remesh'])} | {o['peak_rss_mib']:.0f} | {met} | {ml_cell} | {ratio} |"
         )
     lines.append("")
-    lines.append("Closed surfaces are mapped with the puncture at both ends of the principal axis, in parallel (`--puncture-end best`); their stage columns are the kept map's, `param+remesh` is wall time.")
+    lines.append("Closed surfaces search the radius with the puncture at both ends of the principal axis, in parallel, and finish the end whose search map is the more area-preserving (`--puncture-end best`); their stage columns are the kept end's, `param+remesh` is wall time.")
     with open(os.path.join(RESULTS, "stage_bench.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 

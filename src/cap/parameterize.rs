@@ -297,8 +297,9 @@ pub struct ParamReport {
     pub puncture: Option<Puncture>,
     /// Both ends tried when the puncture end is [`PunctureEnd::Best`] (empty otherwise).
     pub puncture_trials: Vec<PunctureTrial>,
-    /// Wall-clock seconds of the whole parameterization (both puncture ends, mapped in
-    /// parallel, for [`PunctureEnd::Best`]; the stage seconds below are the kept map's).
+    /// Wall-clock seconds of the whole parameterization (for [`PunctureEnd::Best`] both
+    /// ends' searches, in parallel, and the kept end's second half; the stage seconds below
+    /// are the kept end's).
     pub seconds: f64,
     /// Seconds spent in the initial flattening.
     pub flatten_seconds: f64,

@@ -22,7 +22,8 @@ pub enum PunctureEnd {
     /// Deciding before the full-resolution half instead of after it (measured 2026-12-01):
     /// the search maps ranked the ends as the finished maps do on five of the six shared
     /// closed meshes, and the sixth is a tie (48k brain: 0.1547 against 0.1548 searched,
-    /// 0.0068 against 0.0067 finished); the kept end's second half runs on both cores.
+    /// 0.0068 against 0.0067 finished, mean `|d_angle|` 0.311 against 0.296); the kept end's
+    /// second half runs on both cores.
     #[default]
     Best,
     /// The end with the lower input `Z` (the paper's "bottom" for an input standing along `Z`).
