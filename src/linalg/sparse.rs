@@ -153,7 +153,10 @@ fn check_finite(x: &[f64], what: &'static str) -> Result<(), SolveError> {
 /// Factorization and solves run on the calling thread (`Par::Seq`): the systems here have
 /// 10^3 to 10^6 unknowns and a planar-graph pattern, where faer's thread pool spent more time
 /// waking workers than they saved (53k-vertex hand: flattening 2.3 s sequential against 6.8 s
-/// on two threads). Parallelism lives one level up, over independent work, and over the
+/// on two threads; again 2026-12-01 with `Par::rayon(2)` for the systems of more than 50k
+/// unknowns only, the 100k closed ellipsoid's parameterization, whose kept end finishes on
+/// an idle second core: transport 1.25-1.26 s sequential, 1.55-1.63 s parallel, the same map
+/// to the bit). Parallelism lives one level up, over independent work, and over the
 /// right-hand sides of large systems ([`PARALLEL_COLUMNS`]).
 ///
 /// Clones share the symbolic factorization: [`SpdSolver::analyze`] once, then clone for
