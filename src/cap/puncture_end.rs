@@ -93,8 +93,15 @@ pub(super) fn parameterize_best_end(mesh: &TriMesh, bottom: &ParamOptions, top: 
     let trials = vec![trial(&first), trial(&second)];
     match (first.search_area_distortion, second.search_area_distortion) {
         (Some(a), Some(b)) => {
-            let map = if b < a { finish(mesh, second, top, progress)? } else { finish(mesh, first, bottom, progress)? };
-            Ok(finished(map, trials))
+            // The other end's mesh copy and maps go before the kept end's second half.
+            let (kept, options) = if b < a {
+                drop(first);
+                (second, top)
+            } else {
+                drop(second);
+                (first, bottom)
+            };
+            Ok(finished(finish(mesh, kept, options, progress)?, trials))
         }
         // No search (a fixed domain): finish both and keep the better map.
         _ => {
