@@ -213,3 +213,34 @@ fn fixed_radii_outside_the_search_range_are_refused() {
     let ok = capmesh().args(["param", "--quiet"]).arg(&input).arg("-o").arg(dir.join("r.ply")).args(["--domain", "radius=2"]).output().unwrap();
     assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
 }
+
+/// `remesh` takes the parameterization options `param` takes (one set of flags,
+/// `map_args.rs`): they reach the library (the report says so) and bad values are refused.
+#[test]
+fn remesh_takes_the_parameterization_options() {
+    let dir = temp_dir("remesh_options");
+    let input = data("closed_bunny_npm.obj.gz");
+    let report = dir.join("report.json");
+    let run = capmesh()
+        .args(["--quiet", "remesh"])
+        .arg(&input)
+        .arg("-o")
+        .arg(dir.join("bunny.ply"))
+        .arg("--report")
+        .arg(&report)
+        .args(["--faces", "800", "--puncture-end", "top", "--search-sites", "0", "--smoothing", "0", "--area-refinement", "5", "--lambda", "0.3"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
+    let p = &json["parameterization"];
+    assert_eq!(p["puncture_trials"].as_array().map(|a| a.len()), Some(0), "one end only");
+    assert!(p["search_sites"].is_null(), "--search-sites 0 searches at full resolution");
+    assert_eq!(p["smoothing_kappa"].as_f64(), Some(0.0));
+    assert_eq!(p["area_refinement"]["sweeps"].as_u64(), Some(5));
+    assert_eq!(p["flatten"]["lambda"].as_f64(), Some(0.3));
+    let bad = capmesh().args(["--quiet", "remesh"]).arg(&input).arg("-o").arg(dir.join("bad.ply")).args(["--lambda", "2"]).output().unwrap();
+    assert!(!bad.status.success());
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(err.contains("lambda") && err.contains("closed_bunny_npm"), "{err}");
+}

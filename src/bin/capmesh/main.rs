@@ -12,9 +12,10 @@ macro_rules! outln {
 
 mod cli_progress;
 mod harmonics_cmd;
+mod map_args;
 mod shape_cmd;
 
-use capmesh::cap::{parameterize, Domain, OpenInitialMap, ParamOptions, Smoothing};
+use capmesh::cap::{parameterize, Domain, ParamOptions};
 use capmesh::io;
 use capmesh::remesh::{remesh, CapGrid, RemeshOptions};
 use capmesh::mesh;
@@ -56,33 +57,8 @@ enum Command {
         /// Write a JSON report here.
         #[arg(long)]
         report: Option<PathBuf>,
-        /// Initial map of open surfaces: composite (default: stretch energy composed with
-        /// lambda*mu) or conformal (the paper's disk conformal map).
-        #[arg(long, default_value = "composite")]
-        initial: OpenInitialMap,
-        /// lambda of the closed-surface quasi-conformal composition (paper: 0.2).
-        #[arg(long, default_value_t = capmesh::flatten::closed::DEFAULT_LAMBDA)]
-        lambda: f64,
-        /// lambda of the composite initial map of open surfaces.
-        #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_OPEN_LAMBDA)]
-        open_lambda: f64,
-        /// Regularisation of the final centroid map: auto (default) or a strength >= 0
-        /// (0 is the paper's plain centroid map).
-        #[arg(long, default_value = "auto")]
-        smoothing: Smoothing,
-        /// Sweeps of the face-level area refinement after transport (0 is the paper's map).
-        #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_AREA_REFINEMENT)]
-        area_refinement: usize,
-        /// Closed surfaces: puncture at the best end of the principal axis (searches the
-        /// radius from both, finishes the better), at the bottom (lower input Z) or at the top.
-        #[arg(long, default_value = "best")]
-        puncture_end: capmesh::cap::PunctureEnd,
-        /// Transport sites of the radius search: a mesh of n vertices searches on a coarse
-        /// level of at most max(this, n / 16) sites (closed surfaces: max(min(this, max(n /
-        /// 4, 250)), n / 16)), when that is fewer than n / 2, and solves the full problem at
-        /// r* only (0: search at full resolution, the paper's method).
-        #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_SEARCH_SITES)]
-        search_sites: usize,
+        #[command(flatten)]
+        map: map_args::MapArgs,
     },
     /// Remesh a surface through its adaptive cap: a uniform cap mesh of about N faces
     /// (default) or a latitude/longitude mesh, pulled back by the inverse map. Closed
@@ -112,6 +88,8 @@ enum Command {
         /// pull-back).
         #[arg(long, default_value_t = capmesh::remesh::DEFAULT_AREA_EQUALIZATION)]
         area_equalization: usize,
+        #[command(flatten)]
+        map: map_args::MapArgs,
     },
     /// Adaptive harmonics representation: parameterize onto the adaptive cap, fit every order up
     /// to N by least squares, write the order-N reconstruction (the input's connectivity), the
@@ -242,7 +220,7 @@ fn run(cli: Cli) -> Result<(), String> {
             harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, quiet: cli.quiet })
         }
         Command::Shape { inputs, csv, jobs, domain } => shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, quiet: cli.quiet }),
-        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization } => {
+        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -252,7 +230,8 @@ fn run(cli: Cli) -> Result<(), String> {
             let read_seconds = t_read.elapsed().as_secs_f64();
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-            let options = RemeshOptions { grid, area_equalization, ..Default::default() };
+            let mut options = RemeshOptions { grid, area_equalization, ..Default::default() };
+            map.apply(&mut options.param);
             let (out, rep) = remesh(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
             bar.finish();
             let t_write = std::time::Instant::now();
@@ -344,7 +323,7 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             Ok(())
         }
-        Command::Param { input, output, domain, report, initial, lambda, open_lambda, smoothing, area_refinement, puncture_end, search_sites } => {
+        Command::Param { input, output, domain, report, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -352,13 +331,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let m = read(&input)?;
             let bar = cli_progress::Bar::new(cli.quiet);
             let mut options = ParamOptions::default().with_domain(domain);
-            options.open_initial = initial;
-            options.closed.lambda = lambda;
-            options.open_lambda = open_lambda;
-            options.smoothing = smoothing;
-            options.area_refinement = area_refinement;
-            options.puncture_end = puncture_end;
-            options.search_sites = search_sites;
+            map.apply(&mut options);
             let map = parameterize(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
             bar.finish();
             io::write_mesh(&output, &map.cap_mesh(&m)).map_err(|e| e.to_string())?;

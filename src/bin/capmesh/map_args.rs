@@ -1,0 +1,50 @@
+//! The parameterization options `param` and `remesh` share (paper Sec. 3: the initial map
+//! and its `lambda`, the regularisation and refinement of the transport map, the puncture end
+//! of closed surfaces, the radius search's coarse level), and how they set [`ParamOptions`].
+
+use capmesh::cap::{OpenInitialMap, ParamOptions, PunctureEnd, Smoothing};
+
+/// Parameterization options of the command line (each defaults to the library's default).
+#[derive(clap::Args, Debug, Clone)]
+pub struct MapArgs {
+    /// Initial map of open surfaces: composite (default: stretch energy composed with
+    /// lambda*mu) or conformal (the paper's disk conformal map).
+    #[arg(long, default_value = "composite")]
+    pub initial: OpenInitialMap,
+    /// lambda of the closed-surface quasi-conformal composition (paper: 0.2).
+    #[arg(long, default_value_t = capmesh::flatten::closed::DEFAULT_LAMBDA)]
+    pub lambda: f64,
+    /// lambda of the composite initial map of open surfaces.
+    #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_OPEN_LAMBDA)]
+    pub open_lambda: f64,
+    /// Regularisation of the final centroid map: auto (default) or a strength >= 0
+    /// (0 is the paper's plain centroid map).
+    #[arg(long, default_value = "auto")]
+    pub smoothing: Smoothing,
+    /// Sweeps of the face-level area refinement after transport (0 is the paper's map).
+    #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_AREA_REFINEMENT)]
+    pub area_refinement: usize,
+    /// Closed surfaces: puncture at the best end of the principal axis (searches the
+    /// radius from both, finishes the better), at the bottom (lower input Z) or at the top.
+    #[arg(long, default_value = "best")]
+    pub puncture_end: PunctureEnd,
+    /// Transport sites of the radius search: a mesh of n vertices searches on a coarse
+    /// level of at most max(this, n / 16) sites (closed surfaces: max(min(this, max(n /
+    /// 4, 250)), n / 16)), when that is fewer than n / 2, and solves the full problem at
+    /// r* only (0: search at full resolution, the paper's method).
+    #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_SEARCH_SITES)]
+    pub search_sites: usize,
+}
+
+impl MapArgs {
+    /// Set these options on `options` (its domain is left as it is).
+    pub fn apply(&self, options: &mut ParamOptions) {
+        options.open_initial = self.initial;
+        options.closed.lambda = self.lambda;
+        options.open_lambda = self.open_lambda;
+        options.smoothing = self.smoothing;
+        options.area_refinement = self.area_refinement;
+        options.puncture_end = self.puncture_end;
+        options.search_sites = self.search_sites;
+    }
+}
