@@ -349,7 +349,7 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
 
 /// [`parameterize`] with the puncture end fixed by `options.closed.puncture`.
 pub(super) fn parameterize_once(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
-    let searched = search_radius(mesh, options, progress)?;
+    let searched = search_radius(mesh, options, false, progress)?;
     finish(mesh, searched, options, progress)
 }
 
@@ -369,7 +369,8 @@ pub(super) struct Searched {
     /// The transport map at `radius` when the search solved it at full resolution.
     map: Option<TransportMap>,
     /// Mean `|d_area|` of the search's map at `r*` on the cap (the coarse level's map
-    /// prolonged to every vertex when the search ran there); `None` without a search.
+    /// prolonged to every vertex when the search ran there); `None` without a search or when
+    /// not asked for.
     pub(super) search_area_distortion: Option<f64>,
     curve: Vec<RadiusSample>,
     search_sites: Option<usize>,
@@ -392,8 +393,20 @@ struct SearchBest {
     prolonged: Vec<[f64; 2]>,
 }
 
+/// The source density of the transport: uniform on the planar disk, stereographic on the
+/// cap's disks.
+fn transport_density(domain: Domain) -> &'static dyn RadialDensity {
+    if domain == Domain::Disk {
+        &UniformDensity
+    } else {
+        &StereographicDensity
+    }
+}
+
 /// Check, weld and flatten `mesh`, and find the radius (the search of the adaptive domain).
-pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<Searched, Error> {
+/// With `rank_ends`, also measure the search map at `r*`
+/// ([`Searched::search_area_distortion`], which [`PunctureEnd::Best`] compares).
+pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, rank_ends: bool, progress: &dyn Progress) -> Result<Searched, Error> {
     let start = Instant::now();
     progress::check(progress, Stage::Validate, 0.0, "checking the mesh")?;
     // Hard errors of the input as given (indices out of range, repeated indices in a face,
@@ -434,9 +447,7 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, progress: &d
         on_boundary[b as usize] = true;
     }
     let target = vertex_areas(&work.vertices, &faces);
-    let stereo = StereographicDensity;
-    let uniform = UniformDensity;
-    let density: &dyn RadialDensity = if options.domain == Domain::Disk { &uniform } else { &stereo };
+    let density = transport_density(options.domain);
     let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, density, options.transport.clone());
     let t_ot = Instant::now();
     let mut curve = Vec::new();
@@ -501,8 +512,10 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, progress: &d
             coarse_newton_iterations = coarse_transport.as_ref().map_or(0, |t| t.newton_iterations);
             coarse_symbolic = coarse_transport.as_ref().map_or(0, |t| t.symbolic_factorizations);
             let SearchBest { r, map, prolonged, .. } = best.ok_or_else(|| Error::Unsupported("radius search made no evaluation".into()))?;
-            let on_cap: Vec<[f64; 3]> = map.as_ref().map_or(&prolonged, |m| &m.centroids).iter().map(|&q| inverse_stereographic(q)).collect();
-            search_area_distortion = Some(Stats::of(area_distortion(&work.vertices, &on_cap, &faces)).mean_abs);
+            if rank_ends {
+                let on_cap: Vec<[f64; 3]> = map.as_ref().map_or(&prolonged, |m| &m.centroids).iter().map(|&q| inverse_stereographic(q)).collect();
+                search_area_distortion = Some(Stats::of(area_distortion(&work.vertices, &on_cap, &faces)).mean_abs);
+            }
             match map {
                 Some(map) if search_tolerance <= options.transport.tolerance => (r, Some(map)),
                 Some(_) => (r, Some(transport.map_at(r, progress)?)),
@@ -543,16 +556,34 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, progress: &d
 /// the search solved it), its regularisation and fold repair, the area refinement and the
 /// report.
 pub(super) fn finish(mesh: &TriMesh, s: Searched, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
-    let Searched { start, welded, kind, faces, disk, on_boundary, target, flatten_report, puncture, radius, map, curve, search_sites, coarse_newton_iterations, .. } = s;
+    let Searched {
+        start,
+        welded,
+        kind,
+        faces,
+        disk,
+        on_boundary,
+        target,
+        flatten_report,
+        puncture,
+        radius,
+        map,
+        search_area_distortion: _,
+        curve,
+        search_sites,
+        coarse_newton_iterations,
+        mut newton_iterations,
+        mut solves,
+        symbolic_factorizations: mut symbolic,
+        flatten_seconds,
+        transport_seconds: search_seconds,
+    } = s;
     let work = &welded.mesh;
     let t_ot = Instant::now();
-    let (mut newton_iterations, mut solves, mut symbolic) = (s.newton_iterations, s.solves, s.symbolic_factorizations);
     let transported = match map {
         Some(map) => map,
         None => {
-            let (stereo, uniform) = (StereographicDensity, UniformDensity);
-            let density: &dyn RadialDensity = if options.domain == Domain::Disk { &uniform } else { &stereo };
-            let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, density, options.transport.clone());
+            let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, transport_density(options.domain), options.transport.clone());
             let map = transport.map_at(radius, progress)?;
             newton_iterations += transport.newton_iterations;
             solves += transport.solves;
@@ -560,7 +591,7 @@ pub(super) fn finish(mesh: &TriMesh, s: Searched, options: &ParamOptions, progre
             map
         }
     };
-    let transport_seconds = s.transport_seconds + t_ot.elapsed().as_secs_f64();
+    let transport_seconds = search_seconds + t_ot.elapsed().as_secs_f64();
     let to_cap = |p: &[[f64; 2]]| -> Vec<[f64; 3]> {
         if options.domain == Domain::Disk {
             lift(p)
@@ -609,7 +640,7 @@ pub(super) fn finish(mesh: &TriMesh, s: Searched, options: &ParamOptions, progre
         puncture,
         puncture_trials: Vec::new(),
         seconds: start.elapsed().as_secs_f64(),
-        flatten_seconds: s.flatten_seconds,
+        flatten_seconds,
         transport_seconds,
         regularise_seconds,
         refine_seconds,

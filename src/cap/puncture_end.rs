@@ -67,7 +67,7 @@ pub(super) fn parameterize_best_end(mesh: &TriMesh, bottom: &ParamOptions, top: 
     }
     // Closed ones search both ends at once (independent; on two cores this halves the
     // wall time), then finish the end whose search map is the more area-preserving.
-    let (first, second) = rayon::join(|| search_radius(mesh, bottom, progress), || search_radius(mesh, top, progress));
+    let (first, second) = rayon::join(|| search_radius(mesh, bottom, true, progress), || search_radius(mesh, top, true, progress));
     let first = first?;
     let axis = |s: &Searched| s.puncture.as_ref().map_or([0.0; 3], |p| p.axis);
     let trial = |s: &Searched| PunctureTrial { axis: axis(s), search_area_distortion: s.search_area_distortion, mean_abs_area_distortion: None };
