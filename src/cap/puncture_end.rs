@@ -66,8 +66,14 @@ pub(super) fn parameterize_best_end(mesh: &TriMesh, bottom: &ParamOptions, top: 
         return parameterize_once(mesh, bottom, progress);
     }
     // Closed ones search both ends at once (independent; on two cores this halves the
-    // wall time), then finish the end whose search map is the more area-preserving.
-    let (first, second) = rayon::join(|| search_radius(mesh, bottom, true, progress), || search_radius(mesh, top, true, progress));
+    // wall time), then finish the end whose search map is the more area-preserving. While
+    // both flatten, each solves its two right-hand sides in one pass (the cores are busy).
+    let one_pass = |o: &ParamOptions| {
+        let mut o = o.clone();
+        o.closed.parallel_solves = false;
+        o
+    };
+    let (first, second) = rayon::join(|| search_radius(mesh, &one_pass(bottom), true, progress), || search_radius(mesh, &one_pass(top), true, progress));
     let first = first?;
     let axis = |s: &Searched| s.puncture.as_ref().map_or([0.0; 3], |p| p.axis);
     let trial = |s: &Searched| PunctureTrial { axis: axis(s), search_area_distortion: s.search_area_distortion, mean_abs_area_distortion: None };

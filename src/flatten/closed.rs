@@ -28,11 +28,15 @@ pub struct ClosedFlattenOptions {
     pub puncture: PunctureOptions,
     /// Stretch energy options.
     pub stretch: StretchOptions,
+    /// Solve the two coordinates' right-hand sides of the large systems on separate threads
+    /// ([`SpdSolver::set_parallel_columns`]). Default `true`; [`crate::cap::PunctureEnd::Best`]
+    /// sets it to `false` while both ends flatten at once.
+    pub parallel_solves: bool,
 }
 
 impl Default for ClosedFlattenOptions {
     fn default() -> Self {
-        Self { lambda: DEFAULT_LAMBDA, puncture: PunctureOptions::default(), stretch: StretchOptions::default() }
+        Self { lambda: DEFAULT_LAMBDA, puncture: PunctureOptions::default(), stretch: StretchOptions::default(), parallel_solves: true }
     }
 }
 
@@ -120,6 +124,7 @@ fn stretch_then_beltrami(
 ) -> Result<(Vec<[f64; 2]>, ClosedFlattenReport), FlattenError> {
     let weights = cotangent_weights(vertices, faces);
     let mut solver = SpdSolver::new();
+    solver.set_parallel_columns(options.parallel_solves);
     let (initial, _) = harmonic_extension_with(vertices.len(), faces, &weights, fixed, &mut solver)?;
     let (sem, stretch) = stretch_energy_map_with(vertices, faces, fixed, &initial, &options.stretch, &mut solver)?;
     let mu: Vec<[f64; 2]> = beltrami_coefficients(vertices, faces, &sem)

@@ -18,6 +18,10 @@ pub struct GraphPattern {
     n: usize,
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
+    /// Per key `(i, j)`, the value slots of `(i, j)` (column `j`) and `(j, i)` (column `i`).
+    key_slots: Vec<[usize; 2]>,
+    /// Per column, the value slot of its diagonal.
+    diagonal_slots: Vec<usize>,
 }
 
 impl GraphPattern {
@@ -48,21 +52,47 @@ impl GraphPattern {
         }
         let mut next = col_ptr[..n].to_vec();
         let mut row_idx = vec![0usize; col_ptr[n]];
-        for &k in keys {
+        let mut key_slots = vec![[0usize; 2]; keys.len()];
+        for (&k, slots) in keys.iter().zip(&mut key_slots) {
             let (i, j) = split(k);
             row_idx[next[j]] = i;
+            slots[0] = next[j];
             next[j] += 1;
         }
+        let mut diagonal_slots = vec![0usize; n];
         for (c, slot) in next.iter_mut().enumerate() {
             row_idx[*slot] = c;
+            diagonal_slots[c] = *slot;
             *slot += 1;
         }
-        for &k in keys {
+        for (&k, slots) in keys.iter().zip(&mut key_slots) {
             let (i, j) = split(k);
             row_idx[next[i]] = j;
+            slots[1] = next[i];
             next[i] += 1;
         }
-        Ok(Self { n, col_ptr, row_idx })
+        Ok(Self { n, col_ptr, row_idx, key_slots, diagonal_slots })
+    }
+
+    /// The matrix with `diagonal[c]` at `(c, c)` and `key_values[k]` at `(i, j)` and `(j, i)`
+    /// for the `k`-th key `(i, j)` the pattern was made of: a scatter into the slots
+    /// [`GraphPattern::new`] recorded, with no search (the stretch-energy matrices, whose
+    /// values come per edge of the pattern).
+    pub fn symmetric_on_keys(&self, diagonal: &[f64], key_values: &[f64], what: &'static str) -> Result<SparseColMat<usize, f64>, SolveError> {
+        let n = self.n;
+        if diagonal.len() != n || key_values.len() != self.key_slots.len() {
+            return Err(SolveError::Backend { what, message: format!("{} diagonal entries and {} edge values for {n} unknowns and {} edges", diagonal.len(), key_values.len(), self.key_slots.len()) });
+        }
+        let mut values = vec![0.0; self.row_idx.len()];
+        for (&s, &d) in self.diagonal_slots.iter().zip(diagonal) {
+            values[s] = d;
+        }
+        for (&[a, b], &v) in self.key_slots.iter().zip(key_values) {
+            values[a] = v;
+            values[b] = v;
+        }
+        let symbolic = SymbolicSparseColMat::new_checked(n, n, self.col_ptr.clone(), None, self.row_idx.clone());
+        Ok(SparseColMat::new(symbolic, values))
     }
 
     /// The matrix with `diagonal[c]` at `(c, c)` and, for each `(i, j, v)` of `off_diagonal`
@@ -84,8 +114,7 @@ impl GraphPattern {
             let (lo, hi) = (self.col_ptr[col], self.col_ptr[col + 1]);
             self.row_idx[lo..hi].binary_search(&row).ok().map(|k| lo + k)
         };
-        for (c, &d) in diagonal.iter().enumerate() {
-            let s = slot(c, c).expect("every column stores its diagonal");
+        for (&s, &d) in self.diagonal_slots.iter().zip(diagonal) {
             values[s] = d;
         }
         for (i, j, v) in off_diagonal {
@@ -166,6 +195,22 @@ mod tests {
         assert_eq!(ours.symbolic().row_idx(), reference.symbolic().row_idx());
         assert_eq!(ours.val(), reference.val());
         assert!(ours.val().iter().filter(|&&v| v == 0.0).count() > keys.len() / 2);
+    }
+
+    #[test]
+    fn scatter_on_keys_matches_the_searched_assembly() {
+        let n = 60;
+        let keys = random_keys(n, 300, 11);
+        let pattern = GraphPattern::new(n, &keys, "test").unwrap();
+        let values: Vec<f64> = (0..keys.len()).map(|k| -0.5 - (k as f64 * 0.37).sin()).collect();
+        let diagonal: Vec<f64> = (0..n).map(|c| 20.0 + c as f64).collect();
+        let scattered = pattern.symmetric_on_keys(&diagonal, &values, "test").unwrap();
+        let searched = pattern.symmetric(&diagonal, keys.iter().zip(&values).map(|(&k, &v)| (split(k).0, split(k).1, v)), "test").unwrap();
+        assert_eq!(scattered.symbolic().col_ptr(), searched.symbolic().col_ptr());
+        assert_eq!(scattered.symbolic().row_idx(), searched.symbolic().row_idx());
+        assert_eq!(scattered.val(), searched.val());
+        assert!(pattern.symmetric_on_keys(&diagonal, &values[1..], "test").is_err());
+        assert!(pattern.symmetric_on_keys(&diagonal[1..], &values, "test").is_err());
     }
 
     #[test]

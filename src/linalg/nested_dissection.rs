@@ -19,7 +19,17 @@
 //! the hand; 16: 3.55M, 64: 3.64M, 128: 3.92M); one-sided separators always on the first
 //! half gave 3.64M-3.71M. Splitting at the medians of all the positions, once, instead of
 //! at the medians of what each separator leaves (2026-11-30, hand): ordering 15 -> 6-7 ms a
-//! Newton step, factors 3.52M-3.73M entries against 3.51M-3.79M.
+//! Newton step, factors 3.52M-3.73M entries against 3.51M-3.79M. Both one-sided separators
+//! of a split come from one scan of the first half's edges (2026-12-01, the same orders:
+//! 164k closed ellipsoid 31-47 -> 17-27 ms a full-resolution Newton step).
+//!
+//! Measured and dropped (2026-12-01): METIS's multilevel nested dissection (`METIS_NodeND`
+//! through the metis-sys crate) for the flattening systems, whose pattern is fixed: 39%
+//! fewer factor entries than AMD on the 164k closed ellipsoid (9.8M against 16.0M; 100k:
+//! 5.7M against 7.2M; hand 2.0M against 2.8M), each numeric factorization 0.18 -> 0.14 s, but
+//! the ordering took 0.64 s (AMD 0.14-0.16 s) and the flattening was no faster (3.0 s either
+//! way); METIS on the graph contracted by one or two matchings was 2-4 times faster to order
+//! and lost the fill it had won (13.2M, 18.6M).
 
 /// Unknowns per leaf at most (eliminated in the order they come).
 pub const LEAF: usize = 8;
@@ -101,20 +111,27 @@ impl Dissection {
             return;
         }
         let mid = len / 2;
-        // Unknowns of positions `from` (in the part) with a live neighbour in `other`.
-        let separator = |from: std::ops::Range<usize>, other: std::ops::Range<usize>, taken: &[bool]| -> Vec<usize> {
-            from.filter(|&k| {
-                !taken[k]
-                    && pattern.neighbours(at(k)).iter().any(|&u| {
-                        let r = self.rank.get(u).map_or(usize::MAX, |&r| r.wrapping_sub(lo));
-                        other.contains(&r) && !taken[r]
-                    })
-            })
-            .collect()
-        };
-        let first = separator(0..mid, mid..len, taken);
-        let second = separator(mid..len, 0..mid, taken);
-        let chosen = if first.len() <= second.len() { first } else { second };
+        // Both one-sided separators from one scan of the first half's edges (the pattern is
+        // symmetric: an edge between live unknowns of the two halves puts its first-half end
+        // in the first separator and its second-half end in the second); each in position
+        // order.
+        let mut first = Vec::new();
+        let mut in_second = vec![false; len - mid];
+        for k in (0..mid).filter(|&k| !taken[k]) {
+            let mut crosses = false;
+            for &u in pattern.neighbours(at(k)) {
+                let r = self.rank.get(u).map_or(usize::MAX, |&r| r.wrapping_sub(lo));
+                if (mid..len).contains(&r) && !taken[r] {
+                    crosses = true;
+                    in_second[r - mid] = true;
+                }
+            }
+            if crosses {
+                first.push(k);
+            }
+        }
+        let second_len = in_second.iter().filter(|&&m| m).count();
+        let chosen: Vec<usize> = if first.len() <= second_len { first } else { (mid..len).filter(|&k| in_second[k - mid]).collect() };
         for &k in &chosen {
             taken[k] = true;
         }
@@ -267,6 +284,75 @@ mod tests {
         // Natural (banded) order: about m^3 = 64000 entries; nested dissection O(n log n).
         assert!(natural > 60_000, "{natural}");
         assert!(nd < natural / 2, "nested dissection {nd}, natural {natural}");
+    }
+
+    /// The order by the definition of [`Dissection::order`]: each one-sided separator found
+    /// by its own scan of its half.
+    fn order_by_definition(d: &Dissection, col_ptr: &[usize], row_idx: &[usize]) -> Vec<usize> {
+        fn part(d: &Dissection, p: &Pattern, lo: usize, taken: &mut [bool], out: &mut Vec<usize>) {
+            let len = taken.len();
+            let at = |k: usize| d.points_in_order[lo + k];
+            if len <= LEAF {
+                out.extend((0..len).filter(|&k| !taken[k]).map(at));
+                return;
+            }
+            let mid = len / 2;
+            let one_sided = |from: std::ops::Range<usize>, other: std::ops::Range<usize>, taken: &[bool]| -> Vec<usize> {
+                from.filter(|&k| !taken[k] && p.neighbours(at(k)).iter().any(|&u| other.contains(&d.rank[u].wrapping_sub(lo)) && !taken[d.rank[u] - lo])).collect()
+            };
+            let (first, second) = (one_sided(0..mid, mid..len, taken), one_sided(mid..len, 0..mid, taken));
+            let chosen = if first.len() <= second.len() { first } else { second };
+            for &k in &chosen {
+                taken[k] = true;
+            }
+            let (a, b) = taken.split_at_mut(mid);
+            part(d, p, lo, a, out);
+            part(d, p, lo + mid, b, out);
+            out.extend(chosen.iter().map(|&k| at(k)));
+        }
+        let mut out = Vec::new();
+        part(d, &Pattern { col_ptr, row_idx }, 0, &mut vec![false; d.len()], &mut out);
+        out
+    }
+
+    #[test]
+    fn one_scan_finds_the_separators_of_the_definition() {
+        // A triangulated grid with pseudo-random diagonals and jittered points.
+        let m = 45;
+        let id = |i: usize, j: usize| i * m + j;
+        let mut s = 12345u64;
+        let mut next = || {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (s >> 33) as f64 / (1u64 << 31) as f64
+        };
+        let points: Vec<[f64; 2]> = (0..m * m).map(|v| [(v / m) as f64 + 0.3 * next(), (v % m) as f64 + 0.3 * next()]).collect();
+        let mut neighbours = vec![vec![]; m * m];
+        let mut link = |a: usize, b: usize| {
+            neighbours[a].push(b);
+            neighbours[b].push(a);
+        };
+        for i in 0..m {
+            for j in 0..m {
+                if i + 1 < m {
+                    link(id(i, j), id(i + 1, j));
+                }
+                if j + 1 < m {
+                    link(id(i, j), id(i, j + 1));
+                }
+                if i + 1 < m && j + 1 < m {
+                    if next() < 0.5 { link(id(i, j), id(i + 1, j + 1)) } else { link(id(i + 1, j), id(i, j + 1)) }
+                }
+            }
+        }
+        let (mut col_ptr, mut row_idx) = (vec![0], Vec::new());
+        for (v, list) in neighbours.iter_mut().enumerate() {
+            list.push(v);
+            list.sort_unstable();
+            row_idx.extend_from_slice(list);
+            col_ptr.push(row_idx.len());
+        }
+        let d = Dissection::new(&points);
+        assert_eq!(d.order(&col_ptr, &row_idx), order_by_definition(&d, &col_ptr, &row_idx));
     }
 
     #[test]

@@ -157,7 +157,7 @@ fn check_finite(x: &[f64], what: &'static str) -> Result<(), SolveError> {
 /// unknowns only, the 100k closed ellipsoid's parameterization, whose kept end finishes on
 /// an idle second core: transport 1.25-1.26 s sequential, 1.55-1.63 s parallel, the same map
 /// to the bit). Parallelism lives one level up, over independent work, and over the
-/// right-hand sides of large systems ([`PARALLEL_COLUMNS`]).
+/// right-hand sides of large systems (from 20 000 unknowns).
 ///
 /// Clones share the symbolic factorization: [`SpdSolver::analyze`] once, then clone for
 /// parallel numeric factorizations of matrices with that pattern.
@@ -184,6 +184,9 @@ pub struct SpdSolver {
     /// factorization then orders by nested dissection ([`super::nested_dissection`]) instead
     /// of AMD.
     dissection: Option<Arc<Dissection>>,
+    /// Solve one right-hand side per thread in [`SpdSolver::solve_in_place`] (large systems);
+    /// see [`SpdSolver::set_parallel_columns`].
+    sequential_columns: bool,
 }
 
 impl SpdSolver {
@@ -198,6 +201,17 @@ impl SpdSolver {
         self.dissection = Some(Arc::new(Dissection::new(&positions)));
         self.symbolic = None;
         self.factored = false;
+    }
+
+    /// Whether [`SpdSolver::solve_in_place`] solves the right-hand sides of a large system on
+    /// separate threads (from 20 000 unknowns; the default) or all in one pass over the
+    /// factor. One pass is the better when the other core is busy with another such solver:
+    /// [`crate::cap::PunctureEnd::Best`] flattens both ends at once, and there the two
+    /// streams of each solve only compete for the memory bandwidth (one pass: flattening of
+    /// the 100k closed ellipsoid 1.46-1.64 -> 1.28-1.43 s, of the 164k one 3.31-3.62 ->
+    /// 3.13-3.54 s, three alternating runs each, 2026-12-01).
+    pub fn set_parallel_columns(&mut self, parallel: bool) {
+        self.sequential_columns = !parallel;
     }
 
     /// Factor `a` (both triangles stored); reuses the symbolic part when the pattern matches.
@@ -251,7 +265,7 @@ impl SpdSolver {
         };
         let n = rhs.first().map_or(0, |c| c.len());
         let k = rhs.len();
-        if k > 1 && n >= PARALLEL_COLUMNS {
+        if k > 1 && n >= PARALLEL_COLUMNS && !self.sequential_columns {
             // One column per task: each solve streams the factor from memory, and two
             // threads streaming it beat one solve carrying both columns.
             return rhs.par_iter_mut().try_for_each(|col| self.solve_in_place(std::slice::from_mut(col), what));
