@@ -6,8 +6,12 @@
 //! The planar image of a cap map is far from uniform (a closed surface mapped to `Z*` near -1
 //! packs most triangles near the centre of a disk of radius 20), so a uniform grid put
 //! thousands of triangles in a cell; the hierarchy splits at the median and adapts.
+//!
+//! Each triangle's barycentric map is precomputed in the hierarchy's leaf order, so a leaf's
+//! containment tests read one contiguous block (2026-12-01, remesh area equalization, medians
+//! of six alternating runs: MEG helmet 27.8 -> 21.7 ms, bunny 33.5 -> 25.8 ms, hand 69 -> 70
+//! ms; the same remeshes to rounding).
 
-use crate::mesh::geometry::signed_area_2d;
 
 /// A located point: the triangle and barycentric coordinates (non-negative, sum 1).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,6 +48,40 @@ pub struct Locator<'a> {
     faces: &'a [[u32; 3]],
     nodes: Vec<Node>,
     order: Vec<u32>,
+    /// Per position of `order`, its triangle's barycentric map (see [`Affine`]): a leaf's
+    /// containment tests read one contiguous block instead of gathering corners.
+    affine: Vec<Affine>,
+    /// Per triangle, its position in `order`.
+    position: Vec<u32>,
+}
+
+/// A triangle `(a, b, c)`'s map from a point `p` to its barycentric coordinates `(b1, b2)`
+/// of `b` and `c` (`b0 = 1 - b1 - b2`): `b1 = r1 . (p - a)`, `b2 = r2 . (p - a)`, the rows of
+/// the inverse of `[b - a, c - a]`. NaN for a degenerate triangle (no point is inside).
+#[derive(Debug, Clone, Copy)]
+struct Affine {
+    a: [f64; 2],
+    r1: [f64; 2],
+    r2: [f64; 2],
+}
+
+impl Affine {
+    fn new(q: [[f64; 2]; 3]) -> Self {
+        let u = [q[1][0] - q[0][0], q[1][1] - q[0][1]];
+        let v = [q[2][0] - q[0][0], q[2][1] - q[0][1]];
+        let det = u[0] * v[1] - u[1] * v[0];
+        if det == 0.0 || !det.is_finite() {
+            return Self { a: q[0], r1: [f64::NAN; 2], r2: [f64::NAN; 2] };
+        }
+        Self { a: q[0], r1: [v[1] / det, -v[0] / det], r2: [-u[1] / det, u[0] / det] }
+    }
+
+    fn barycentric(&self, p: [f64; 2]) -> [f64; 3] {
+        let w = [p[0] - self.a[0], p[1] - self.a[1]];
+        let b1 = self.r1[0] * w[0] + self.r1[1] * w[1];
+        let b2 = self.r2[0] * w[0] + self.r2[1] * w[1];
+        [1.0 - b1 - b2, b1, b2]
+    }
 }
 
 impl<'a> Locator<'a> {
@@ -97,10 +135,18 @@ impl<'a> Locator<'a> {
             todo.push((left, start, mid));
             todo.push((left + 1, mid, end));
         }
-        Self { points, faces, nodes, order }
+        let affine = order.iter().map(|&f| Affine::new(faces[f as usize].map(|v| points[v as usize]))).collect();
+        let mut position = vec![0u32; faces.len()];
+        for (k, &f) in order.iter().enumerate() {
+            position[f as usize] = k as u32;
+        }
+        Self { points, faces, nodes, order, affine, position }
     }
 
+    /// Barycentric coordinates by signed areas (the tests' reference for [`Affine`]).
+    #[cfg(test)]
     fn barycentric(&self, f: usize, p: [f64; 2]) -> [f64; 3] {
+        use crate::mesh::geometry::signed_area_2d;
         let [a, b, c] = self.faces[f].map(|v| self.points[v as usize]);
         let area = signed_area_2d(a, b, c);
         if area == 0.0 {
@@ -143,8 +189,8 @@ impl<'a> Locator<'a> {
                 stack.push(node.first as usize + 1);
                 continue;
             }
-            for &f in &self.order[node.first as usize..(node.first + node.count) as usize] {
-                if let Some(loc) = self.inside(f as usize, p, -CONTAINMENT_TOLERANCE) {
+            for k in node.first as usize..(node.first + node.count) as usize {
+                if let Some(loc) = self.inside_at(k, p, -CONTAINMENT_TOLERANCE) {
                     return Some(loc);
                 }
             }
@@ -183,10 +229,15 @@ impl<'a> Locator<'a> {
     /// `p`'s location in triangle `f` when every barycentric coordinate is at least `margin`
     /// (negative: containment up to rounding).
     fn inside(&self, f: usize, p: [f64; 2], margin: f64) -> Option<Location> {
-        let bary = self.barycentric(f, p);
+        self.inside_at(self.position[f] as usize, p, margin)
+    }
+
+    /// [`Locator::inside`] for the triangle at position `k` of the hierarchy's order.
+    fn inside_at(&self, k: usize, p: [f64; 2], margin: f64) -> Option<Location> {
+        let bary = self.affine[k].barycentric(p);
         if bary.iter().all(|&b| b >= margin) {
             let s: f64 = bary.iter().map(|b| b.max(0.0)).sum();
-            return Some(Location { face: f, bary: bary.map(|b| b.max(0.0) / s) });
+            return Some(Location { face: self.order[k] as usize, bary: bary.map(|b| b.max(0.0) / s) });
         }
         None
     }
