@@ -76,11 +76,17 @@ pub fn refine_areas(
 ) -> AreaRefineReport {
     let source: Vec<f64> = faces.iter().map(|f| triangle_area(vertices[f[0] as usize], vertices[f[1] as usize], vertices[f[2] as usize])).collect();
     let mut lifted: Vec<[f64; 3]> = plane.iter().map(|&p| lift(p)).collect();
-    refine_towards(plane, &mut lifted, &source, faces, fixed, lift, options)
+    refine_towards(plane, &mut lifted, &source, faces, fixed, &|_, p| lift(p), options)
 }
 
+/// The lift of [`refine_towards`]: `lift(v, p)` is the domain point of the planar point `p`,
+/// asked while vertex `v` moves (its finite differences and trial steps), so that a lift by
+/// point location can start from where `v`'s last point was (the remesh's equalization);
+/// the answer must not depend on `v`.
+pub type VertexLift<'a> = dyn Fn(usize, [f64; 2]) -> [f64; 3] + Sync + 'a;
+
 /// The refinement itself: move the free vertices of `plane` so that the areas of the lifted
-/// faces (`lifted[v] = lift(plane[v])`, kept up to date; fixed vertices may carry any
+/// faces (`lifted[v] = lift(v, plane[v])`, kept up to date; fixed vertices may carry any
 /// position) become proportional to `target` areas. Planar faces keep the orientation of
 /// the majority (positive or negative) they start with.
 pub fn refine_towards(
@@ -89,7 +95,7 @@ pub fn refine_towards(
     target: &[f64],
     faces: &[[u32; 3]],
     fixed: &[bool],
-    lift: &(dyn Fn([f64; 2]) -> [f64; 3] + Sync),
+    lift: &VertexLift,
     options: RefineOptions,
 ) -> AreaRefineReport {
     let n = plane.len();
@@ -215,7 +221,7 @@ struct LocalProblem<'a> {
     offset: f64,
     /// +1 or -1: the orientation planar faces must keep.
     orientation: f64,
-    lift: &'a (dyn Fn([f64; 2]) -> [f64; 3] + Sync),
+    lift: &'a VertexLift<'a>,
     /// The line search's first trial, in Gauss-Newton steps.
     over_relaxation: f64,
 }
@@ -284,13 +290,13 @@ impl LocalProblem<'_> {
         true
     }
 
-    /// The lift's Jacobian `dl/dp` at `p` (lifted `lp`) by forward differences of step `h`:
-    /// one lift per column.
-    fn lift_jacobian(&self, p: [f64; 2], lp: [f64; 3], h: f64) -> [[f64; 3]; 2] {
+    /// The lift's Jacobian `dl/dp` at `p` (lifted `lp`; vertex `v` moving) by forward
+    /// differences of step `h`: one lift per column.
+    fn lift_jacobian(&self, v: usize, p: [f64; 2], lp: [f64; 3], h: f64) -> [[f64; 3]; 2] {
         [0, 1].map(|k| {
             let mut q = p;
             q[k] += h;
-            let l = (self.lift)(q);
+            let l = (self.lift)(v, q);
             [(l[0] - lp[0]) / h, (l[1] - lp[1]) / h, (l[2] - lp[2]) / h]
         })
     }
@@ -309,7 +315,7 @@ impl LocalProblem<'_> {
             return None;
         }
         let p0 = plane[v];
-        let dl = self.lift_jacobian(p0, lifted[v], h);
+        let dl = self.lift_jacobian(v, p0, lifted[v], h);
         // Gauss-Newton step: (J^T J + eps I) s = -J^T r.
         let (mut a, mut b, mut c, mut g0, mut g1) = (0.0, 0.0, 0.0, 0.0, 0.0);
         for f in scratch.iter() {
@@ -330,7 +336,7 @@ impl LocalProblem<'_> {
         let mut t = self.over_relaxation;
         for _ in 0..8 {
             let p = [p0[0] + t * step[0], p0[1] + t * step[1]];
-            let lp = (self.lift)(p);
+            let lp = (self.lift)(v, p);
             if self.lowers(p, lp, local, plane, lifted, e0) {
                 return Some((p, lp));
             }
@@ -401,7 +407,8 @@ mod tests {
         let lift = |q: [f64; 2]| inverse_stereographic(q);
         let lifted: Vec<[f64; 3]> = plane.iter().map(|&p| lift(p)).collect();
         let ln_source: Vec<f64> = cap.faces.iter().map(|f| triangle_area(cap.vertices[f[0] as usize], cap.vertices[f[1] as usize], cap.vertices[f[2] as usize]).ln()).collect();
-        let local = LocalProblem { offset: 0.1, orientation: 1.0, lift: &lift, over_relaxation: 1.0 };
+        let vertex_lift = |_: usize, q: [f64; 2]| lift(q);
+        let local = LocalProblem { offset: 0.1, orientation: 1.0, lift: &vertex_lift, over_relaxation: 1.0 };
         let wedges = Wedges::new(plane.len(), &cap.faces, &ln_source);
         let mut checked = 0;
         let mut linear = Vec::new();
@@ -419,7 +426,7 @@ mod tests {
             let (energy, shortest) = local.linearize(v, incident, &plane, &lifted, &mut linear).expect("linearize");
             assert!((energy - linear.iter().map(|f| f.residual * f.residual).sum::<f64>()).abs() < 1e-15);
             // The step's planar Jacobian, as `step` forms it.
-            let dl = local.lift_jacobian(plane[v], lifted[v], 1e-6 * shortest);
+            let dl = local.lift_jacobian(v, plane[v], lifted[v], 1e-6 * shortest);
             let jac: Vec<[f64; 2]> = linear.iter().map(|f| [dot(f.gradient, dl[0]), dot(f.gradient, dl[1])]).collect();
             let h = 1e-5 * shortest;
             for k in 0..2 {

@@ -12,6 +12,7 @@
 //! triangles' orientation, so the result stays an embedding pulled back from the cap.
 
 use super::locate::Locator;
+use std::sync::atomic::{AtomicU32, Ordering};
 use crate::cap::area_refine::{refine_towards, AreaRefineReport, RefineOptions};
 use crate::cap::stereographic;
 use crate::mesh::geometry::triangle_area;
@@ -33,15 +34,19 @@ pub fn equalize_areas(
         return AreaRefineReport::default();
     }
     let locator = Locator::new(plane, surface_faces);
-    // The refinement lifts one vertex's points in a row on one thread (its position's
-    // finite-difference neighbours, then its trial steps): each thread tries the triangle of
-    // its last query first.
-    thread_local! {
-        static LAST_FACE: std::cell::Cell<Option<usize>> = const { std::cell::Cell::new(None) };
-    }
-    let lift = |q: [f64; 2]| -> [f64; 3] {
-        let found = locator.locate_near(q, LAST_FACE.with(|c| c.get()));
-        LAST_FACE.with(|c| c.set(found.map(|loc| loc.face)));
+    // The refinement lifts a vertex's points near its last one (its position's
+    // finite-difference neighbours, its trial steps, the next sweep's): each vertex's
+    // queries try the triangle of its last query first. Before (2026-12-01), one hint per
+    // thread, whose first query for each vertex missed (the previous vertex of a colour
+    // class is elsewhere): MEG helmet equalization 24.3 -> 20.5 ms, bunny 24.8 -> 18.3 ms,
+    // hand 65 -> 60 ms (medians of six alternating runs; the same remeshes byte for byte).
+    let last_face: Vec<AtomicU32> = (0..cap.vertices.len()).map(|_| AtomicU32::new(u32::MAX)).collect();
+    let lift = |v: usize, q: [f64; 2]| -> [f64; 3] {
+        let hint = last_face.get(v).map(|h| h.load(Ordering::Relaxed)).filter(|&h| h != u32::MAX).map(|h| h as usize);
+        let found = locator.locate_near(q, hint);
+        if let (Some(h), Some(loc)) = (last_face.get(v), found) {
+            h.store(loc.face as u32, Ordering::Relaxed);
+        }
         match found {
             Some(loc) => {
                 let [a, b, c] = surface_faces[loc.face].map(|v| surface.vertices[v as usize]);
