@@ -12,11 +12,11 @@
 //! triangles' orientation, so the result stays an embedding pulled back from the cap.
 
 use super::locate::Locator;
-use std::sync::atomic::{AtomicU32, Ordering};
 use crate::cap::area_refine::{refine_towards, AreaRefineReport, RefineOptions};
 use crate::cap::stereographic;
 use crate::mesh::geometry::triangle_area;
 use crate::mesh::TriMesh;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Equalize the areas of `out` (the cap mesh `cap` pulled back onto `surface`; positions
 /// updated in place). `surface_faces` are the faces of `surface` that the plane map `plane`

@@ -12,7 +12,6 @@
 //! of six alternating runs: MEG helmet 27.8 -> 21.7 ms, bunny 33.5 -> 25.8 ms, hand 69 -> 70
 //! ms; the same remeshes to rounding).
 
-
 /// A located point: the triangle and barycentric coordinates (non-negative, sum 1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Location {
