@@ -126,6 +126,20 @@ fn stretch_then_beltrami(
     let mut solver = SpdSolver::new();
     solver.set_parallel_columns(options.parallel_solves);
     let (initial, _) = harmonic_extension_with(vertices.len(), faces, &weights, fixed, &mut solver)?;
+    // The later systems share the harmonic map's pattern: when many factorizations will use
+    // it and AMD filled more than a planar dissection usually does, order them by nested
+    // dissection on the map if that fills less.
+    let many = options.stretch.factored_iterations.min(options.stretch.max_iterations) + 1 >= DISSECTION_OFFER_FACTORIZATIONS;
+    let n_free = (vertices.len() - fixed.len()) as f64;
+    let poor = solver.factor_entries().is_some_and(|e| e as f64 > DISSECTION_FILL * n_free * n_free.max(2.0).log2());
+    if many && poor {
+        let mut is_fixed = vec![false; vertices.len()];
+        for &(v, _) in fixed {
+            is_fixed[v as usize] = true;
+        }
+        let free: Vec<[f64; 2]> = initial.iter().zip(&is_fixed).filter(|(_, &f)| !f).map(|(p, _)| *p).collect();
+        solver.offer_positions(&free, "stretch energy")?;
+    }
     let (sem, stretch) = stretch_energy_map_with(vertices, faces, fixed, &initial, &options.stretch, &mut solver)?;
     let mu: Vec<[f64; 2]> = beltrami_coefficients(vertices, faces, &sem)
         .into_iter()
@@ -135,6 +149,24 @@ fn stretch_then_beltrami(
     let flipped_faces = count_flipped(&uv, faces);
     Ok((uv, ClosedFlattenReport { stretch, lambda: options.lambda, flipped_faces }))
 }
+
+/// Factorizations of the flattening's shared pattern (stretch-energy iterations that factor,
+/// and the Beltrami solve) from which the harmonic map's nested dissection is offered
+/// ([`SpdSolver::offer_positions`]): its analysis pays only over many factorizations. Closed
+/// surfaces factor all 10 iterations (164k ellipsoid: flattening 3.55-3.65 -> 2.86-3.17 s
+/// with the dissection kept); open surfaces factor 3
+/// ([`crate::cap::ParamOptions::open_factored_iterations`]), and on the hand, the 101k and
+/// the 1M disk AMD had the smaller factor anyway.
+const DISSECTION_OFFER_FACTORIZATIONS: usize = 8;
+
+/// The offer is made only when AMD's factor has more than this many entries per
+/// `n log2 n` unknowns: the dissection's factor had 4.5-4.9 on every mesh measured
+/// (2026-12-01: hand 4.9, 48k brain 4.5, 100k ellipsoid 4.6, 164k ellipsoid 4.7), AMD's 3.1
+/// (48k brain), 3.4 (hand), 4.3 (100k ellipsoid) and 5.65 (164k ellipsoid, numbered by
+/// icosphere subdivision). Below it the dissection's analysis (two of them at once for
+/// [`crate::cap::PunctureEnd::Best`]) only cost time: 48k brain flattening 0.55 -> 0.62 s,
+/// 100k ellipsoid 1.36 -> 1.38 s (medians of four alternating runs, the same maps).
+const DISSECTION_FILL: f64 = 4.5;
 
 /// `lambda * mu`, pulled back inside the unit disk where the stretch energy map folded a face
 /// (`|mu| >= 1`), so the Beltrami system stays elliptic.
