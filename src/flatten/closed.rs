@@ -130,7 +130,7 @@ fn stretch_then_beltrami(
     // it and AMD filled more than a planar dissection usually does, order them by nested
     // dissection on the map if that fills less.
     let many = options.stretch.factored_iterations.min(options.stretch.max_iterations) + 1 >= DISSECTION_OFFER_FACTORIZATIONS;
-    let n_free = (vertices.len() - fixed.len()) as f64;
+    let n_free = vertices.len().saturating_sub(fixed.len()) as f64;
     let poor = solver.factor_entries().is_some_and(|e| e as f64 > DISSECTION_FILL * n_free * n_free.max(2.0).log2());
     if many && poor {
         let mut is_fixed = vec![false; vertices.len()];
@@ -153,8 +153,8 @@ fn stretch_then_beltrami(
 /// Factorizations of the flattening's shared pattern (stretch-energy iterations that factor,
 /// and the Beltrami solve) from which the harmonic map's nested dissection is offered
 /// ([`SpdSolver::offer_positions`]): its analysis pays only over many factorizations. Closed
-/// surfaces factor all 10 iterations (164k ellipsoid: flattening 3.55-3.65 -> 2.86-3.17 s
-/// with the dissection kept); open surfaces factor 3
+/// surfaces factor all 10 iterations (164k ellipsoid: one end's flattening 3.16-3.65 ->
+/// 2.65-3.17 s with the dissection kept); open surfaces factor 3
 /// ([`crate::cap::ParamOptions::open_factored_iterations`]), and on the hand, the 101k and
 /// the 1M disk AMD had the smaller factor anyway.
 const DISSECTION_OFFER_FACTORIZATIONS: usize = 8;
