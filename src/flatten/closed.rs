@@ -9,7 +9,7 @@ use super::beltrami::{beltrami_coefficients, linear_beltrami_solver_with};
 use super::harmonic::{count_flipped, harmonic_extension_with};
 use super::puncture::{choose_puncture, Puncture, PunctureOptions};
 use super::stretch_energy::{stretch_energy_map_with, StretchOptions, StretchReport};
-use super::FlattenError;
+use super::{pin, FlattenError};
 use crate::linalg::{cotangent_weights, SpdSolver};
 use crate::mesh::geometry::{norm, sub};
 use crate::mesh::topology::edge_faces;
@@ -129,16 +129,14 @@ fn stretch_then_beltrami(
     // The later systems share the harmonic map's pattern: when many factorizations will use
     // it and AMD filled more than a planar dissection usually does, order them by nested
     // dissection on the map if that fills less.
-    let many = options.stretch.factored_iterations.min(options.stretch.max_iterations) + 1 >= DISSECTION_OFFER_FACTORIZATIONS;
-    let n_free = vertices.len().saturating_sub(fixed.len()) as f64;
-    let poor = solver.factor_entries().is_some_and(|e| e as f64 > DISSECTION_FILL * n_free * n_free.max(2.0).log2());
-    if many && poor {
-        let mut is_fixed = vec![false; vertices.len()];
-        for &(v, _) in fixed {
-            is_fixed[v as usize] = true;
+    if options.stretch.factored_iterations.min(options.stretch.max_iterations) + 1 >= DISSECTION_OFFER_FACTORIZATIONS {
+        let mut positions = initial.clone();
+        let (is_fixed, _, n_free) = pin(&mut positions, fixed);
+        let n = n_free as f64;
+        if solver.factor_entries().is_some_and(|e| e as f64 > DISSECTION_FILL * n * n.max(2.0).log2()) {
+            let free: Vec<[f64; 2]> = positions.into_iter().zip(&is_fixed).filter(|(_, &f)| !f).map(|(p, _)| p).collect();
+            solver.offer_positions(&free, "stretch energy")?;
         }
-        let free: Vec<[f64; 2]> = initial.iter().zip(&is_fixed).filter(|(_, &f)| !f).map(|(p, _)| *p).collect();
-        solver.offer_positions(&free, "stretch energy")?;
     }
     let (sem, stretch) = stretch_energy_map_with(vertices, faces, fixed, &initial, &options.stretch, &mut solver)?;
     let mu: Vec<[f64; 2]> = beltrami_coefficients(vertices, faces, &sem)

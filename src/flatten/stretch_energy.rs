@@ -193,7 +193,8 @@ impl StretchLayout {
         let n_free = self.n_free;
         let mut rhs = vec![vec![0.0; n_free], vec![0.0; n_free]];
         let mut diagonal = vec![0.0; n_free];
-        let mut edge_weight = vec![0.0; self.n_edges];
+        // The off-diagonal entries, -(sum of the edge's corner weights), summed as such.
+        let mut off_diagonal = vec![0.0; self.n_edges];
         for ((t, w), slots) in faces.iter().zip(weights).zip(&self.face_edges) {
             for k in 0..3 {
                 let (i, j) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
@@ -209,12 +210,11 @@ impl StretchLayout {
                     }
                 }
                 if slots[k] != NO_EDGE {
-                    edge_weight[slots[k] as usize] += wk;
+                    off_diagonal[slots[k] as usize] -= wk;
                 }
             }
         }
-        edge_weight.iter_mut().for_each(|w| *w = -*w);
-        Ok((self.pattern.symmetric_on_keys(&diagonal, &edge_weight, "stretch energy")?, rhs))
+        Ok((self.pattern.symmetric_on_keys(&diagonal, &off_diagonal, "stretch energy")?, rhs))
     }
 }
 

@@ -443,17 +443,28 @@ mod tests {
         t.assemble("test").unwrap()
     }
 
+    /// Factor `a` with `solver` and solve for `rhs`.
+    fn factor_and_solve(solver: &mut SpdSolver, a: &SparseColMat<usize, f64>, rhs: &[f64]) -> Vec<f64> {
+        solver.factor(a, "test").unwrap();
+        let mut x = vec![rhs.to_vec()];
+        solver.solve_in_place(&mut x, "test").unwrap();
+        x.remove(0)
+    }
+
+    /// `x` and `y` agree to 1e-10 of `x`'s largest entry.
+    fn assert_same_solution(x: &[f64], y: &[f64]) {
+        let scale = x.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        for (p, q) in x.iter().zip(y) {
+            assert!((p - q).abs() <= 1e-10 * scale, "{p} vs {q}");
+        }
+    }
+
     #[test]
     fn offered_positions_are_kept_only_when_they_fill_less() {
         let m = 50;
         let a = grid_matrix(m);
         let rhs: Vec<f64> = (0..m * m).map(|k| ((k * 13) % 7) as f64 - 3.0).collect();
-        let solve = |solver: &mut SpdSolver| {
-            solver.factor(&a, "test").unwrap();
-            let mut x = vec![rhs.clone()];
-            solver.solve_in_place(&mut x, "test").unwrap();
-            x.remove(0)
-        };
+        let solve = |solver: &mut SpdSolver| factor_and_solve(solver, &a, &rhs);
         let grid: Vec<[f64; 2]> = (0..m * m).map(|k| [(k / m) as f64, (k % m) as f64]).collect();
         let fill_with = |positions: Option<&[[f64; 2]]>| {
             let mut s = SpdSolver::new();
@@ -483,10 +494,7 @@ mod tests {
         let count = solver.symbolic_count;
         let x = solve(&mut solver);
         assert_eq!(solver.symbolic_count, count);
-        let scale = x_amd.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-        for (p, q) in x_amd.iter().zip(&x) {
-            assert!((p - q).abs() <= 1e-10 * scale, "{p} vs {q}");
-        }
+        assert_same_solution(&x_amd, &x);
         // Positions of another size are not offered.
         assert!(!solver.offer_positions(&grid[1..], "test").unwrap());
     }
@@ -496,21 +504,13 @@ mod tests {
         let m = 60;
         let a = grid_matrix(m);
         let rhs: Vec<f64> = (0..m * m).map(|k| ((k * 37) % 11) as f64 - 5.0).collect();
-        let solve = |solver: &mut SpdSolver| {
-            solver.factor(&a, "test").unwrap();
-            let mut x = vec![rhs.clone()];
-            solver.solve_in_place(&mut x, "test").unwrap();
-            x.remove(0)
-        };
+        let solve = |solver: &mut SpdSolver| factor_and_solve(solver, &a, &rhs);
         let mut amd = SpdSolver::new();
         let x_amd = solve(&mut amd);
         let mut nd = SpdSolver::new();
         nd.set_positions((0..m * m).map(|k| [(k / m) as f64, (k % m) as f64]).collect());
         let x_nd = solve(&mut nd);
-        let scale = x_amd.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-        for (p, q) in x_amd.iter().zip(&x_nd) {
-            assert!((p - q).abs() <= 1e-10 * scale, "{p} vs {q}");
-        }
+        assert_same_solution(&x_amd, &x_nd);
         // New positions drop the analysis: the next factorization analyses anew.
         nd.set_positions((0..m * m).map(|k| [(k % m) as f64, (k / m) as f64]).collect());
         let before = nd.symbolic_count;
