@@ -94,3 +94,31 @@ fn coarse_level_size_follows_the_mesh_size() {
     assert_eq!(search_level_sites(600, d, true), Some(MIN_SEARCH_SITES));
     assert_eq!(search_level_sites(500, d, true), None);
 }
+
+/// After a coarse search the map at `r*` is solved to `TRANSPORT_TOLERANCE` (1e-3), not to
+/// the search's `MASS_TOLERANCE` (1e-5): on the face the last full-resolution Newton step is
+/// saved, the search and its `Z*` are the same, and the distortions after the refinement stay
+/// within 1%.
+#[test]
+fn final_map_at_the_transport_tolerance_saves_a_newton_step_at_the_same_quality() {
+    use capmesh::cap::parameterize::{MASS_TOLERANCE, TRANSPORT_TOLERANCE};
+    let mesh = read_mesh(&data("open_face_choi.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
+    let loose = ParamOptions::default();
+    assert_eq!(loose.transport.tolerance, TRANSPORT_TOLERANCE);
+    assert_eq!(loose.search_tolerance, MASS_TOLERANCE);
+    let mut tight = loose.clone();
+    tight.transport.tolerance = MASS_TOLERANCE;
+    let a = parameterize(&mesh, &loose, &NoProgress).unwrap_or_else(|e| panic!("{e}")).report;
+    let b = parameterize(&mesh, &tight, &NoProgress).unwrap_or_else(|e| panic!("{e}")).report;
+    eprintln!(
+        "face: final tolerance 1e-3: {} Newton steps, d_area {:.5}, d_angle {:.4}; 1e-5: {}, {:.5}, {:.4}",
+        a.newton_iterations, a.area_distortion.mean_abs, a.angle_distortion.mean_abs, b.newton_iterations, b.area_distortion.mean_abs, b.angle_distortion.mean_abs
+    );
+    assert!(a.search_sites.is_some());
+    assert_eq!(a.z_star, b.z_star);
+    assert_eq!(a.coarse_newton_iterations, b.coarse_newton_iterations);
+    assert!(a.newton_iterations < b.newton_iterations, "{} against {}", a.newton_iterations, b.newton_iterations);
+    assert!((a.area_distortion.mean_abs - b.area_distortion.mean_abs).abs() < 0.01 * b.area_distortion.mean_abs);
+    assert!((a.angle_distortion.mean_abs - b.angle_distortion.mean_abs).abs() < 0.01 * b.angle_distortion.mean_abs);
+    assert_eq!(a.flipped_faces, 0);
+}

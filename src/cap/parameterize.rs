@@ -31,16 +31,30 @@ use crate::omt::{OmtError, OtOptions, RadialDensity, StereographicDensity, Unifo
 use crate::progress::{self, Progress, Stage};
 use std::time::Instant;
 
-/// Relative L1 mass error (`sum |m_i - tau_i| / sum tau_i`) at which the parameterization's
-/// transport stops. Newton's last step takes the error from about `1e-6` to `1e-10`, and the
-/// area refinement that follows works at the scale of faces, where `1e-5` is far below
-/// anything measurable: on the eleven shared meshes (2026-11-30) `1e-5` left every mean
-/// `|d_area|` and `|d_angle|` of `1e-7` within 1% (hand 0.0271 -> 0.0273, bird skull 0.1335
-/// -> 0.1339) and saved one Newton step on the hand, the 48k and 12k brains, the face and the
-/// hippocampal sheet (48k brain transport 1.68 -> 1.51 s); it is also the radius search's
-/// tolerance, so a search at full resolution hands over its map at `r*` without another
-/// solve. `1e-3` was worse (hand 0.0302).
+/// Relative L1 mass error (`sum |m_i - tau_i| / sum tau_i`) at which the radius search's
+/// transport solves stop. Newton's last step takes the error from about `1e-6` to `1e-10`;
+/// on the eleven shared meshes (2026-11-30) `1e-5` left every mean `|d_area|` and
+/// `|d_angle|` of `1e-7` within 1% (hand 0.0271 -> 0.0273, bird skull 0.1335 -> 0.1339) and
+/// saved one Newton step on the hand, the 48k and 12k brains, the face and the hippocampal
+/// sheet (48k brain transport 1.68 -> 1.51 s). A search at full resolution hands over its map
+/// at `r*` without another solve. `1e-3` for the search and the final map alike was worse
+/// (hand 0.0302): the search's energies, not the final map, need the digits.
 pub const MASS_TOLERANCE: f64 = 1e-5;
+
+/// Relative L1 mass error at which the final full-resolution transport stops (the map at
+/// `r*` after a coarse radius search, and the fixed domains' maps): a 0.1% mass error, the
+/// level below which the area refinement stops too ([`super::area_refine::GOOD_ENOUGH`]),
+/// since the regularisation and the face-level refinement that follow move the vertices far
+/// more. Newton converges quadratically there, so this saves the last step whenever the one
+/// before it lands below `1e-3`. Measured 2026-12-01 against [`MASS_TOLERANCE`] (search
+/// unchanged at `1e-5`): one full-resolution Newton step fewer on the face, the hippocampal
+/// sheet, the 12k and 48k brains, the lung and the 100k and 164k ellipsoids (their errors
+/// before the last step 1e-4 to 9e-4), mean `|d_area|` and `|d_angle|` within 0.8% (48k
+/// brain 0.00676 -> 0.00677, 164k ellipsoid 0.00831 -> 0.00838, lung 0.01827 -> 0.01821),
+/// transport 48k brain 0.81 -> 0.67-0.80 s, 164k ellipsoid 3.13 -> 2.64-2.76 s; the hand
+/// (1.4e-3 before its last step) keeps its six steps. At `5e-3` the 100k ellipsoid stopped
+/// at 4e-3, one step sooner, and its mean `|d_area|` rose 11% (0.00542 -> 0.00602).
+pub const TRANSPORT_TOLERANCE: f64 = 1e-3;
 
 /// Options of [`parameterize`].
 #[derive(Debug, Clone)]
@@ -51,12 +65,13 @@ pub struct ParamOptions {
     pub z_tolerance: f64,
     /// Maximum transport solves in the radius search. Default 30.
     pub max_search_evaluations: usize,
-    /// Transport solver options. Default: [`OtOptions::default`] with the relative mass
-    /// tolerance [`MASS_TOLERANCE`].
+    /// Transport solver options; their tolerance is the final map's (at `r*` after a coarse
+    /// search, or at a fixed domain's radius). Default: [`OtOptions::default`] with the
+    /// relative mass tolerance [`TRANSPORT_TOLERANCE`].
     pub transport: OtOptions,
-    /// Relative mass tolerance of the transport solves inside the radius search; the map at
-    /// `r*` is then solved to `transport.tolerance`, warm, when that is tighter (by default
-    /// they are equal and a full-resolution search's map at `r*` is kept as it is). Each
+    /// Relative mass tolerance of the transport solves inside the radius search. A search at
+    /// full resolution hands over its map at `r*` when this is no looser than
+    /// `transport.tolerance` (the default), else solves it on, warm, to that. Each
     /// search step saves about one Newton iteration (hand: 39 instead of 45 in all) and `Z*`
     /// does not move. Looser is faster but not safe: at `1e-2` the hand needs 26 iterations,
     /// while the 48k brain's search stops at `Z* = -0.991` instead of the bound and its mean
@@ -103,7 +118,7 @@ impl Default for ParamOptions {
             domain: Domain::Adaptive,
             z_tolerance: 1e-3,
             max_search_evaluations: 30,
-            transport: OtOptions::default().with_tolerance(MASS_TOLERANCE),
+            transport: OtOptions::default().with_tolerance(TRANSPORT_TOLERANCE),
             search_tolerance: MASS_TOLERANCE,
             search_sites: DEFAULT_SEARCH_SITES,
             flatten: DiskConformalOptions::default(),
@@ -462,7 +477,7 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, rank_ends: b
             let mut best: Option<SearchBest> = None;
             let mut evals = 0usize;
             let max_evals = options.max_search_evaluations;
-            let search_tolerance = options.search_tolerance.max(options.transport.tolerance);
+            let search_tolerance = options.search_tolerance;
             // Closed surfaces search over w = atanh(Z*) (= -ln r): their optimum is at the
             // lower bound (the cap becomes the whole sphere but for the punctured quad), and
             // golden steps towards it shrink the distance geometrically in r rather than in
