@@ -442,7 +442,7 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, rank_ends: b
         SurfaceKind::OpenDisk => {
             let boundary = topology.boundary_loops[0].clone();
             if options.open_initial == OpenInitialMap::Composite {
-                let stretch = StretchOptions { factored_iterations: options.open_factored_iterations, ..options.closed.stretch.clone() };
+                let stretch = StretchOptions { factored_iterations: options.open_factored_iterations, refactor_period: 0, ..options.closed.stretch.clone() };
                 let composite = ClosedFlattenOptions { lambda: options.open_lambda, stretch, ..options.closed.clone() };
                 let (disk, rep) = composite_disk_map(&work.vertices, &work.faces, &boundary, &composite)?;
                 (work.faces.clone(), boundary, disk, FlattenReport::Closed(rep), None)

@@ -129,7 +129,7 @@ fn stretch_then_beltrami(
     // The later systems share the harmonic map's pattern: when many factorizations will use
     // it and AMD filled more than a planar dissection usually does, order them by nested
     // dissection on the map if that fills less.
-    if options.stretch.factored_iterations.min(options.stretch.max_iterations) + 1 >= DISSECTION_OFFER_FACTORIZATIONS {
+    if options.stretch.planned_factorizations() + 1 >= DISSECTION_OFFER_FACTORIZATIONS {
         let mut positions = initial.clone();
         let (is_fixed, _, n_free) = pin(&mut positions, fixed);
         let n = n_free as f64;
@@ -150,11 +150,15 @@ fn stretch_then_beltrami(
 
 /// Factorizations of the flattening's shared pattern (stretch-energy iterations that factor,
 /// and the Beltrami solve) from which the harmonic map's nested dissection is offered
-/// ([`SpdSolver::offer_positions`]): its analysis pays only over many factorizations. Closed
-/// surfaces factor all 10 iterations (164k ellipsoid: one end's flattening 3.16-3.65 ->
-/// 2.65-3.17 s with the dissection kept); open surfaces factor 3
-/// ([`crate::cap::ParamOptions::open_factored_iterations`]), and on the hand, the 101k and
-/// the 1M disk AMD had the smaller factor anyway.
+/// ([`SpdSolver::offer_positions`]): its analysis pays only over many factorizations. With
+/// every stretch iteration factoring (`factored_iterations = usize::MAX`: 11) the 164k
+/// ellipsoid's offer was kept (one end's flattening 3.16-3.65 -> 2.65-3.17 s). The default
+/// closed schedule factors every other iteration
+/// ([`super::stretch_energy::StretchOptions::refactor_period`]: 5 planned, 6 with the Beltrami
+/// solve), below this: offered anyway at 6, the 164k ellipsoid's flattening took 2.24-2.41 s
+/// against 2.28-2.36 s without (three alternating runs, 2026-12-01), so it is not. Open
+/// surfaces factor 3 ([`crate::cap::ParamOptions::open_factored_iterations`]), and on the
+/// hand, the 101k and the 1M disk AMD had the smaller factor anyway.
 const DISSECTION_OFFER_FACTORIZATIONS: usize = 8;
 
 /// The offer is made only when AMD's factor has more than this many entries per

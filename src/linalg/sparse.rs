@@ -250,12 +250,14 @@ impl SpdSolver {
     /// uses it. Other patterns keep their own analysis (AMD unless
     /// [`SpdSolver::set_positions`]).
     ///
-    /// The closed-surface flattening offers its harmonic map after the first solve: its later
-    /// systems (11 factorizations) have the same pattern. Measured 2026-12-01 (factor
+    /// The closed-surface flattening offers its harmonic map after the first solve when its
+    /// later systems (11 factorizations with every stretch iteration factoring; not with the
+    /// default schedule, see `flatten::closed`'s `DISSECTION_OFFER_FACTORIZATIONS`) have the
+    /// same pattern. Measured 2026-12-01 (factor
     /// entries, AMD against the dissection): 164k closed ellipsoid 16.0M against 13.4M (kept:
     /// flattening of one puncture end 3.16-3.65 -> 2.65-3.17 s), 100k ellipsoid 7.2M against
     /// 7.7M, 48k brain 2.3M against 3.4M, hand 2.8M against 4.1M (AMD better; see
-    /// `flatten::closed`'s `DISSECTION_FILL` for when the offer is made at all).
+    /// `flatten::closed`'s `DISSECTION_FILL` for the fill that makes the offer).
     pub fn offer_positions(&mut self, positions: &[[f64; 2]], what: &'static str) -> Result<bool, SolveError> {
         let Some(current) = self.symbolic.clone() else { return Ok(false) };
         let (col_ptr, row_idx, present) = &*current;
