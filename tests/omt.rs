@@ -143,3 +143,30 @@ fn backtracking_factor_outside_the_unit_interval_is_refused() {
         assert_eq!(cells.mass.len(), s.len());
     }
 }
+
+/// Below `OtOptions::stale_step_error`, after a full step, Newton first tries the direction
+/// from the last factorization: the same masses to the tolerance with fewer factorizations.
+#[test]
+fn steps_with_the_last_factorization_reach_the_masses_with_fewer_factorizations() {
+    let r = 2.0;
+    let s = sites(1500, r, 33);
+    let mut rnd = lcg(7);
+    let target: Vec<f64> = (0..s.len()).map(|_| 0.5 + 1.5 * rnd()).collect();
+    let d = StereographicDensity;
+    let solve = |stale_step_error: f64| {
+        let options = OtOptions { stale_step_error, ..OtOptions::default() };
+        OtSolver::new(&s, r, &d).unwrap().solve(&target, &options, &NoProgress).unwrap()
+    };
+    let (fresh_cells, fresh) = solve(0.0);
+    let (stale_cells, stale) = solve(capmesh::omt::newton::STALE_STEP_ERROR);
+    eprintln!("every step factored {fresh:?}\nwith stale steps {stale:?}");
+    assert_eq!(fresh.stale_steps, 0);
+    assert!(stale.stale_steps >= 1, "{stale:?}");
+    assert!(stale.iterations - stale.stale_steps < fresh.iterations, "{stale:?} against {fresh:?}");
+    for report in [&fresh, &stale] {
+        assert!(report.mass_error <= OtOptions::default().tolerance, "{report:?}");
+    }
+    for (a, b) in fresh_cells.mass.iter().zip(&stale_cells.mass) {
+        assert!((a - b).abs() < 1e-5 * a, "{a} against {b}");
+    }
+}
