@@ -54,8 +54,8 @@ pub struct OtOptions {
     /// Factor by which a rejected logarithmic step is shortened while it is longer than
     /// [`LOG_FINE_BACKTRACKING`] (then halved). Default [`LOG_STEP_SHRINK`]; 0.5 halves.
     pub log_step_shrink: f64,
-    /// Relative mass error below which, after a full plain Newton step, the next step first
-    /// tries the direction from the last factorization (see [`STALE_STEP_ERROR`]). Default
+    /// Relative mass error below which, after a step accepted at full length, the next step
+    /// first tries the direction from the last factorization (see [`STALE_STEP_ERROR`]). Default
     /// [`STALE_STEP_ERROR`]; 0 factors every step.
     pub stale_step_error: f64,
 }
@@ -419,8 +419,9 @@ impl<'d> OtSolver<'d> {
         let eps = 0.5 * min_tau.min(min_m0.max(0.0));
         let err0 = err.max(options.tolerance);
         let mut small_steps = 0;
-        // Whether the last accepted step was a full plain Newton step, so that the solver's
-        // factorization is of a Hessian close to the current one.
+        // Whether the last accepted step went the full length (either direction, or a step
+        // with the last factorization), so that the solver's factorization is of a Hessian
+        // close to the current one.
         let mut quadratic = false;
         for it in 0..max_iterations {
             if err <= options.tolerance {
