@@ -445,6 +445,11 @@ mod tests {
         t.assemble("test").unwrap()
     }
 
+    /// The grid points of [`grid_matrix`]'s unknowns, in its numbering.
+    fn grid_positions(m: usize) -> Vec<[f64; 2]> {
+        (0..m * m).map(|k| [(k / m) as f64, (k % m) as f64]).collect()
+    }
+
     /// Factor `a` with `solver` and solve for `rhs`.
     fn factor_and_solve(solver: &mut SpdSolver, a: &SparseColMat<usize, f64>, rhs: &[f64]) -> Vec<f64> {
         solver.factor(a, "test").unwrap();
@@ -467,7 +472,7 @@ mod tests {
         let a = grid_matrix(m);
         let rhs: Vec<f64> = (0..m * m).map(|k| ((k * 13) % 7) as f64 - 3.0).collect();
         let solve = |solver: &mut SpdSolver| factor_and_solve(solver, &a, &rhs);
-        let grid: Vec<[f64; 2]> = (0..m * m).map(|k| [(k / m) as f64, (k % m) as f64]).collect();
+        let grid = grid_positions(m);
         let fill_with = |positions: Option<&[[f64; 2]]>| {
             let mut s = SpdSolver::new();
             if let Some(p) = positions {
@@ -510,7 +515,7 @@ mod tests {
         let mut amd = SpdSolver::new();
         let x_amd = solve(&mut amd);
         let mut nd = SpdSolver::new();
-        nd.set_positions((0..m * m).map(|k| [(k / m) as f64, (k % m) as f64]).collect());
+        nd.set_positions(grid_positions(m));
         let x_nd = solve(&mut nd);
         assert_same_solution(&x_amd, &x_nd);
         // New positions drop the analysis: the next factorization analyses anew.

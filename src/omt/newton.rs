@@ -430,7 +430,7 @@ impl<'d> OtSolver<'d> {
             let frac = ((err0.ln() - err.ln()) / (err0.ln() - options.tolerance.ln())).clamp(0.0, 1.0);
             progress::check(progress, Stage::Transport, frac, &format!("mass error {err:.2e}")).map_err(NewtonFailure::Cancelled)?;
             if quadratic && err <= options.stale_step_error {
-                let dw = self.stale_direction(&cells, tau).map_err(NewtonFailure::Linear)?;
+                let (dw, _) = self.solve_directions(&cells, tau, false).map_err(NewtonFailure::Linear)?;
                 if let Some((trial, c, e)) = self.trial(&dw, 1.0, tau, disk, eps, STALE_STEP_GAIN * err) {
                     self.tri = trial;
                     cells = c;
@@ -537,38 +537,37 @@ impl<'d> OtSolver<'d> {
         (min_m >= eps && e <= bound).then_some((trial, c, e))
     }
 
-    /// The plain Newton step `H dw = tau - m` with the Hessian of the last factorization.
-    fn stale_direction(&self, cells: &CellIntegrals, tau: &[f64]) -> Result<Vec<f64>, SolveError> {
-        let n = tau.len();
-        if n == 1 {
-            return Ok(vec![0.0]);
-        }
-        let mut rhs = vec![(1..n).map(|i| tau[i] - cells.mass[i]).collect::<Vec<f64>>()];
-        self.linear.solve_in_place(&mut rhs, "transport Hessian")?;
-        Ok(std::iter::once(0.0).chain(rhs[0].iter().copied()).collect())
-    }
-
     /// Solve `H dw = tau - m` with `w_0` pinned, and with `logarithmic` also the step of the
     /// logarithmic masses (see [`LOG_STEP_ERROR`]) with the same factorization.
     fn newton_direction(&mut self, cells: &CellIntegrals, tau: &[f64], logarithmic: bool) -> Result<(Vec<f64>, Option<Vec<f64>>), SolveError> {
         let n = tau.len();
+        if n > 1 {
+            self.update_pattern(cells)?;
+            // Explicit zeros on the kept pattern: while it covers the current edges the
+            // matrix keeps its sparsity pattern and the symbolic factorization is reused.
+            let mut diag = vec![0.0; n];
+            for &(i, j, c) in &cells.edges {
+                diag[i as usize] += c;
+                diag[j as usize] += c;
+            }
+            let scale = diag.iter().cloned().fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+            // A tiny regularisation keeps isolated cells (no interior edge) solvable.
+            let reduced: Vec<f64> = diag[1..].iter().map(|d| d + 1e-14 * scale).collect();
+            let off_diagonal = cells.edges.iter().filter(|e| e.0 > 0 && e.1 > 0).map(|&(i, j, c)| (i as usize - 1, j as usize - 1, -c));
+            let h = self.hessian_pattern.symmetric(&reduced, off_diagonal, "transport Hessian")?;
+            self.linear.factor(&h, "transport Hessian")?;
+        }
+        self.solve_directions(cells, tau, logarithmic)
+    }
+
+    /// The plain step `H dw = tau - m` (and with `logarithmic` the logarithmic one) with the
+    /// last factorization of `H`, `w_0` pinned: [`OtSolver::newton_direction`]'s solve, and
+    /// alone the chord step of [`STALE_STEP_ERROR`].
+    fn solve_directions(&self, cells: &CellIntegrals, tau: &[f64], logarithmic: bool) -> Result<(Vec<f64>, Option<Vec<f64>>), SolveError> {
+        let n = tau.len();
         if n == 1 {
             return Ok((vec![0.0], logarithmic.then(|| vec![0.0])));
         }
-        self.update_pattern(cells)?;
-        // Explicit zeros on the kept pattern: while it covers the current edges the matrix
-        // keeps its sparsity pattern and the symbolic factorization is reused.
-        let mut diag = vec![0.0; n];
-        for &(i, j, c) in &cells.edges {
-            diag[i as usize] += c;
-            diag[j as usize] += c;
-        }
-        let scale = diag.iter().cloned().fold(0.0, f64::max).max(f64::MIN_POSITIVE);
-        // A tiny regularisation keeps isolated cells (no interior edge) solvable.
-        let reduced: Vec<f64> = diag[1..].iter().map(|d| d + 1e-14 * scale).collect();
-        let off_diagonal = cells.edges.iter().filter(|e| e.0 > 0 && e.1 > 0).map(|&(i, j, c)| (i as usize - 1, j as usize - 1, -c));
-        let h = self.hessian_pattern.symmetric(&reduced, off_diagonal, "transport Hessian")?;
-        self.linear.factor(&h, "transport Hessian")?;
         let mut rhs = vec![(1..n).map(|i| tau[i] - cells.mass[i]).collect::<Vec<f64>>()];
         if logarithmic {
             rhs.push(logarithmic_residual(&cells.mass, tau)[1..].to_vec());
