@@ -170,3 +170,35 @@ fn steps_with_the_last_factorization_reach_the_masses_with_fewer_factorizations(
         assert!((a - b).abs() < 1e-5 * a, "{a} against {b}");
     }
 }
+
+#[test]
+fn predicted_warm_start_saves_newton_steps_and_reaches_the_same_masses() {
+    use capmesh::cap::planar_transport::PlanarTransport;
+    let disk = sites(1500, 1.0, 41);
+    let on_boundary: Vec<bool> = (0..disk.len()).map(|i| i < 24).collect();
+    let mut rnd = lcg(9);
+    let target: Vec<f64> = (0..disk.len()).map(|_| 0.5 + 1.5 * rnd()).collect();
+    let d = StereographicDensity;
+    let options = OtOptions::default().with_tolerance(1e-7);
+    let run = |predict: bool| {
+        let mut t = PlanarTransport::new(&disk, &on_boundary, &target, &d, options.clone());
+        t.set_prediction(predict);
+        for r in [0.6, 0.9] {
+            t.map_at(r, &NoProgress).unwrap();
+        }
+        let before = t.newton_iterations;
+        let map = t.map_at(0.75, &NoProgress).unwrap();
+        (map, t.newton_iterations - before, t.predicted_starts)
+    };
+    let (plain, plain_steps, plain_predicted) = run(false);
+    let (predicted, predicted_steps, starts) = run(true);
+    eprintln!("Newton steps at r = 0.75: {plain_steps} from the last weights, {predicted_steps} from predicted ones");
+    assert_eq!((plain_predicted, starts), (0, 1));
+    assert!(predicted_steps < plain_steps, "{predicted_steps} against {plain_steps}");
+    for (a, b) in plain.masses.iter().zip(&predicted.masses) {
+        assert!((a - b).abs() < 1e-5 * a, "{a} against {b}");
+    }
+    for (p, q) in plain.centroids.iter().zip(&predicted.centroids) {
+        assert!((p[0] - q[0]).hypot(p[1] - q[1]) < 1e-5, "{p:?} against {q:?}");
+    }
+}

@@ -255,6 +255,9 @@ pub struct OtSolver<'d> {
     pattern: Vec<u64>,
     /// The Newton matrices' layout on [`OtSolver::pattern`] (rebuilt with it).
     hessian_pattern: GraphPattern,
+    /// The integrals at the current weights, when [`OtSolver::try_weights`] computed them
+    /// (taken by the next [`OtSolver::solve`], dropped by [`OtSolver::rescale`]).
+    current: Option<CellIntegrals>,
 }
 
 impl<'d> OtSolver<'d> {
@@ -270,7 +273,7 @@ impl<'d> OtSolver<'d> {
             linear.set_positions(sites.iter().skip(1).copied().collect());
         }
         let hessian_pattern = GraphPattern::new(sites.len().saturating_sub(1), &[], "transport Hessian")?;
-        Ok(Self { tri, radius, density, linear, pattern: Vec::new(), hessian_pattern })
+        Ok(Self { tri, radius, density, linear, pattern: Vec::new(), hessian_pattern, current: None })
     }
 
     /// The current radius.
@@ -291,6 +294,7 @@ impl<'d> OtSolver<'d> {
     /// Scale sites, weights and the disk by `s`: the regular triangulation is unchanged, so
     /// this is the warm start of the radius search.
     pub fn rescale(&mut self, s: f64) {
+        self.current = None;
         for p in &mut self.tri.sites {
             p[0] *= s;
             p[1] *= s;
@@ -299,6 +303,37 @@ impl<'d> OtSolver<'d> {
             *w *= s * s;
         }
         self.radius *= s;
+    }
+
+    /// Take `weights` instead of the current ones when the regular triangulation reaches them
+    /// by flips and every cell keeps at least half the smallest target mass (`target`
+    /// normalised as in [`OtSolver::solve`]): a predicted warm start. Their integrals are kept
+    /// for the next solve. Returns whether they were taken. (Also requiring a smaller mass
+    /// error than the current weights' cost one more integration per call and changed no
+    /// choice on the shared meshes, 2026-12-01.)
+    pub fn try_weights(&mut self, weights: &[f64], target: &[f64]) -> bool {
+        if weights.len() != self.tri.weights.len() || target.len() != weights.len() {
+            return false;
+        }
+        let total: f64 = target.iter().sum();
+        if total.is_nan() || total <= 0.0 {
+            return false;
+        }
+        let disk = self.density.disk_mass(self.radius);
+        let tau: Vec<f64> = target.iter().map(|t| t * disk / total).collect();
+        let mut trial = self.tri.clone();
+        if !trial.update_weights(weights) {
+            return false;
+        }
+        let c = integrate_masses(&trial, self.radius, self.density);
+        let min_tau = tau.iter().cloned().fold(f64::INFINITY, f64::min);
+        let min_m = c.mass.iter().cloned().fold(f64::INFINITY, f64::min);
+        let keep = min_m >= 0.5 * min_tau;
+        if keep {
+            self.tri = trial;
+            self.current = Some(c);
+        }
+        keep
     }
 
     /// Cell masses and Hessian entries at the current weights (no moments).
@@ -336,7 +371,8 @@ impl<'d> OtSolver<'d> {
         let symbolic0 = self.linear.symbolic_count;
         let mut report = OtReport { min_step: 1.0, ..Default::default() };
         let saved = self.tri.clone();
-        let mut cells = match self.newton(&tau, options, options.max_iterations, &mut report, progress) {
+        let initial = self.current.take();
+        let mut cells = match self.newton(&tau, initial, options, options.max_iterations, &mut report, progress) {
             Ok(c) => c,
             Err(NewtonFailure::Cancelled(c)) => return Err(c.into()),
             Err(NewtonFailure::Linear(e)) => return Err(e.into()),
@@ -380,7 +416,7 @@ impl<'d> OtSolver<'d> {
             tau_t.iter_mut().for_each(|x| *x *= disk / s);
             let saved = self.tri.clone();
             let step_options = OtOptions { tolerance: if t_try < 1.0 { options.tolerance.max(1e-4) } else { options.tolerance }, ..options.clone() };
-            match self.newton(&tau_t, &step_options, 40, report, progress) {
+            match self.newton(&tau_t, None, &step_options, 40, report, progress) {
                 Ok(cells) => {
                     report.continuation_steps += 1;
                     t = t_try;
@@ -406,13 +442,14 @@ impl<'d> OtSolver<'d> {
     fn newton(
         &mut self,
         tau: &[f64],
+        initial: Option<CellIntegrals>,
         options: &OtOptions,
         max_iterations: usize,
         report: &mut OtReport,
         progress: &dyn Progress,
     ) -> Result<CellIntegrals, NewtonFailure> {
         let disk = self.density.disk_mass(self.radius);
-        let mut cells = self.integrals();
+        let mut cells = initial.unwrap_or_else(|| self.integrals());
         let mut err = l1_error(&cells.mass, tau) / disk;
         let min_tau = tau.iter().cloned().fold(f64::INFINITY, f64::min);
         let min_m0 = cells.mass.iter().cloned().fold(f64::INFINITY, f64::min);
