@@ -32,6 +32,12 @@ fn sites(n: usize, r: f64, seed: u64) -> Vec<[f64; 2]> {
     out
 }
 
+/// `n` random target masses varying by a factor 4.
+fn targets(n: usize, seed: u64) -> Vec<f64> {
+    let mut rnd = lcg(seed);
+    (0..n).map(|_| 0.5 + 1.5 * rnd()).collect()
+}
+
 fn masses(sites: &[[f64; 2]], w: &[f64], r: f64, d: &dyn RadialDensity) -> Vec<f64> {
     let mut tri = RegularTriangulation::delaunay(sites).unwrap();
     assert!(tri.update_weights(w));
@@ -94,9 +100,7 @@ fn cell_masses_sum_to_the_disk_mass() {
 fn newton_reaches_prescribed_masses() {
     let r = 2.0;
     let s = sites(400, r, 21);
-    let mut rnd = lcg(2);
-    // Targets varying by a factor 4 across the disk.
-    let target: Vec<f64> = (0..s.len()).map(|_| 0.5 + 1.5 * rnd()).collect();
+    let target = targets(s.len(), 2);
     let d = StereographicDensity;
     let mut solver = OtSolver::new(&s, r, &d).unwrap();
     let (cells, report) = solver.solve(&target, &OtOptions::default(), &NoProgress).unwrap();
@@ -150,8 +154,7 @@ fn backtracking_factor_outside_the_unit_interval_is_refused() {
 fn steps_with_the_last_factorization_reach_the_masses_with_fewer_factorizations() {
     let r = 2.0;
     let s = sites(1500, r, 33);
-    let mut rnd = lcg(7);
-    let target: Vec<f64> = (0..s.len()).map(|_| 0.5 + 1.5 * rnd()).collect();
+    let target = targets(s.len(), 7);
     let d = StereographicDensity;
     let solve = |stale_step_error: f64| {
         let options = OtOptions { stale_step_error, ..OtOptions::default() };
@@ -176,8 +179,7 @@ fn predicted_warm_start_saves_newton_steps_and_reaches_the_same_masses() {
     use capmesh::cap::planar_transport::PlanarTransport;
     let disk = sites(1500, 1.0, 41);
     let on_boundary: Vec<bool> = (0..disk.len()).map(|i| i < 24).collect();
-    let mut rnd = lcg(9);
-    let target: Vec<f64> = (0..disk.len()).map(|_| 0.5 + 1.5 * rnd()).collect();
+    let target = targets(disk.len(), 9);
     let d = StereographicDensity;
     let options = OtOptions::default().with_tolerance(1e-7);
     let run = |predict: bool| {

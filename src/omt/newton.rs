@@ -319,14 +319,8 @@ impl<'d> OtSolver<'d> {
         if total.is_nan() || total <= 0.0 {
             return false;
         }
-        let disk = self.density.disk_mass(self.radius);
-        let tau: Vec<f64> = target.iter().map(|t| t * disk / total).collect();
-        let mut trial = self.tri.clone();
-        if !trial.update_weights(weights) {
-            return false;
-        }
-        let c = integrate_masses(&trial, self.radius, self.density);
-        let min_tau = tau.iter().cloned().fold(f64::INFINITY, f64::min);
+        let min_tau = self.scaled_to_disk(target).into_iter().fold(f64::INFINITY, f64::min);
+        let Some((trial, c)) = self.reweighted(weights) else { return false };
         let min_m = c.mass.iter().cloned().fold(f64::INFINITY, f64::min);
         let keep = min_m >= 0.5 * min_tau;
         if keep {
@@ -334,6 +328,24 @@ impl<'d> OtSolver<'d> {
             self.current = Some(c);
         }
         keep
+    }
+
+    /// `target` scaled to sum to the disk's mass: the masses [`OtSolver::solve`] aims at.
+    fn scaled_to_disk(&self, target: &[f64]) -> Vec<f64> {
+        let total: f64 = target.iter().sum();
+        let disk = self.density.disk_mass(self.radius);
+        target.iter().map(|t| t * disk / total).collect()
+    }
+
+    /// The triangulation with `weights` and its integrals; `None` when flips cannot reach
+    /// them (a site became redundant).
+    fn reweighted(&self, weights: &[f64]) -> Option<(RegularTriangulation, CellIntegrals)> {
+        let mut tri = self.tri.clone();
+        if !tri.update_weights(weights) {
+            return None;
+        }
+        let c = integrate_masses(&tri, self.radius, self.density);
+        Some((tri, c))
     }
 
     /// Cell masses and Hessian entries at the current weights (no moments).
@@ -366,7 +378,7 @@ impl<'d> OtSolver<'d> {
             return Err(OmtError::Invalid(format!("log_step_shrink {} must be in (0, 1)", options.log_step_shrink)));
         }
         let disk = self.density.disk_mass(self.radius);
-        let tau: Vec<f64> = target.iter().map(|t| t * disk / total).collect();
+        let tau = self.scaled_to_disk(target);
         let flips0 = self.tri.flips;
         let symbolic0 = self.linear.symbolic_count;
         let mut report = OtReport { min_step: 1.0, ..Default::default() };
@@ -563,12 +575,8 @@ impl<'d> OtSolver<'d> {
     /// The weights moved by `alpha * dw` when every cell keeps at least `eps` and the mass
     /// error falls to at most `bound`: the new triangulation, integrals and error.
     fn trial(&self, dw: &[f64], alpha: f64, tau: &[f64], disk: f64, eps: f64, bound: f64) -> Option<(RegularTriangulation, CellIntegrals, f64)> {
-        let mut trial = self.tri.clone();
         let w: Vec<f64> = self.tri.weights.iter().zip(dw).map(|(w, d)| w + alpha * d).collect();
-        if !trial.update_weights(&w) {
-            return None;
-        }
-        let c = integrate_masses(&trial, self.radius, self.density);
+        let (trial, c) = self.reweighted(&w)?;
         let e = l1_error(&c.mass, tau) / disk;
         let min_m = c.mass.iter().cloned().fold(f64::INFINITY, f64::min);
         (min_m >= eps && e <= bound).then_some((trial, c, e))
