@@ -24,6 +24,12 @@
 //! # Ok::<(), capmesh::Error>(())
 //! ```
 
+// `!(x > 0.0)` is how this crate says "not positive, or NaN": the negated comparisons reject
+// NaN on purpose, which the `partial_cmp` spelling clippy suggests would hide.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+// The numerical kernels index several arrays by the same vertex or coordinate number.
+#![allow(clippy::needless_range_loop)]
+
 pub mod cap;
 pub mod error;
 #[cfg(feature = "capi")]

@@ -44,19 +44,18 @@ fn last_error() -> String {
 fn take_string(s: *mut c_char) -> String {
     assert!(!s.is_null());
     let text = unsafe { CStr::from_ptr(s) }.to_string_lossy().into_owned();
-    capmesh_v1_string_free(s);
+    unsafe { capmesh_v1_string_free(s) };
     text
 }
 
 /// Copy a result handle into a TriMesh and free it.
 fn take_mesh(m: *mut capmesh_v1_mesh) -> TriMesh {
     assert!(!m.is_null());
-    let nv = capmesh_v1_mesh_vertex_count(m);
-    let nf = capmesh_v1_mesh_face_count(m);
+    let (nv, nf) = unsafe { (capmesh_v1_mesh_vertex_count(m), capmesh_v1_mesh_face_count(m)) };
     let p = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_positions(m), 3 * nv) };
     let t = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_triangles(m), 3 * nf) };
     let mesh = TriMesh::new(p.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(), t.chunks(3).map(|c| [c[0], c[1], c[2]]).collect());
-    capmesh_v1_mesh_free(m);
+    unsafe { capmesh_v1_mesh_free(m) };
     mesh
 }
 
@@ -185,7 +184,7 @@ fn the_progress_callback_reports_and_cancels() {
         capmesh_v1_parameterize(&arrays.view(), null(), Some(count_and_cancel), (&mut calls as *mut Calls).cast(), &mut out, null_mut())
     };
     assert_eq!(status, CAPMESH_V1_OK);
-    capmesh_v1_mesh_free(out);
+    unsafe { capmesh_v1_mesh_free(out) };
     for s in [CAPMESH_V1_STAGE_VALIDATE, CAPMESH_V1_STAGE_FLATTEN, CAPMESH_V1_STAGE_RADIUS_SEARCH, CAPMESH_V1_STAGE_TRANSPORT, CAPMESH_V1_STAGE_PROJECT] {
         assert!(calls.stages.contains(&s), "stage {s} never reported: {:?}", calls.stages);
     }
@@ -287,12 +286,14 @@ fn misuse_returns_errors_with_a_message() {
         assert!(out.is_null());
     }
     // Accessors and free functions accept NULL.
-    assert_eq!(capmesh_v1_mesh_vertex_count(null()), 0);
-    assert_eq!(capmesh_v1_mesh_face_count(null()), 0);
-    assert!(capmesh_v1_mesh_positions(null()).is_null());
-    assert!(capmesh_v1_mesh_triangles(null()).is_null());
-    capmesh_v1_mesh_free(null_mut());
-    capmesh_v1_string_free(null_mut());
+    unsafe {
+        assert_eq!(capmesh_v1_mesh_vertex_count(null()), 0);
+        assert_eq!(capmesh_v1_mesh_face_count(null()), 0);
+        assert!(capmesh_v1_mesh_positions(null()).is_null());
+        assert!(capmesh_v1_mesh_triangles(null()).is_null());
+        capmesh_v1_mesh_free(null_mut());
+        capmesh_v1_string_free(null_mut());
+    }
 }
 
 #[test]

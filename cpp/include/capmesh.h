@@ -309,31 +309,50 @@ capmesh_v1_status capmesh_v1_metrics(const struct capmesh_v1_mesh_view *original
 
 /**
  * Number of vertices of `mesh` (0 for NULL).
+ *
+ * # Safety
+ * `mesh` is NULL or a handle returned by capmesh and not yet released with
+ * `capmesh_v1_mesh_free` (the same holds for every accessor below).
  */
 size_t capmesh_v1_mesh_vertex_count(const struct capmesh_v1_mesh *mesh);
 
 /**
  * Number of triangles of `mesh` (0 for NULL).
+ *
+ * # Safety
+ * As for `capmesh_v1_mesh_vertex_count`.
  */
 size_t capmesh_v1_mesh_face_count(const struct capmesh_v1_mesh *mesh);
 
 /**
  * `3 * vertex_count` coordinates (x, y, z per vertex), owned by `mesh` (NULL for NULL).
+ *
+ * # Safety
+ * As for `capmesh_v1_mesh_vertex_count`; the pointer is valid until the mesh is released.
  */
 const double *capmesh_v1_mesh_positions(const struct capmesh_v1_mesh *mesh);
 
 /**
  * `3 * face_count` vertex indices, owned by `mesh` (NULL for NULL).
+ *
+ * # Safety
+ * As for `capmesh_v1_mesh_vertex_count`; the pointer is valid until the mesh is released.
  */
 const uint32_t *capmesh_v1_mesh_triangles(const struct capmesh_v1_mesh *mesh);
 
 /**
  * Release a mesh returned by capmesh. NULL is accepted and ignored.
+ *
+ * # Safety
+ * `mesh` is NULL or a handle returned by capmesh, released at most once.
  */
 void capmesh_v1_mesh_free(struct capmesh_v1_mesh *mesh);
 
 /**
  * Release a string returned by capmesh (a JSON report). NULL is accepted and ignored.
+ *
+ * # Safety
+ * `text` is NULL or a string returned by capmesh, released at most once.
  */
 void capmesh_v1_string_free(char *text);
 

@@ -194,7 +194,7 @@ mod tests {
         assert!((fx - 1.0).abs() < 1e-6);
         assert!(n < 30);
         // Minimum at the bound.
-        let (x, _) = minimize::<()>(|x| Ok(x), -1.0, 1.0, 1e-4, 60).unwrap();
+        let (x, _) = minimize::<()>(Ok, -1.0, 1.0, 1e-4, 60).unwrap();
         assert!(x < -0.999);
     }
 
@@ -224,7 +224,9 @@ mod tests {
     #[test]
     fn a_minimum_at_the_bound_is_reached_sooner_by_the_probe() {
         // Decreasing all the way to a bound, like the closed surfaces' radius energy.
-        let cases: [(fn(f64) -> f64, f64); 4] = [(|x| x, -3.0), (|x| (x + 3.0).sqrt(), -3.0), (|x| (2.0 * x).exp(), -3.0), (|x| -x.powi(3), 3.0)];
+        // Each case: a function decreasing towards one end of [-3, 3], and that end.
+        type Case = (fn(f64) -> f64, f64);
+        let cases: [Case; 4] = [(|x| x, -3.0), (|x| (x + 3.0).sqrt(), -3.0), (|x| (2.0 * x).exp(), -3.0), (|x| -x.powi(3), 3.0)];
         for (f, bound) in cases {
             let (x, n) = evaluations(f, -3.0, 3.0, 1e-3, true);
             let (x_plain, n_plain) = evaluations(f, -3.0, 3.0, 1e-3, false);

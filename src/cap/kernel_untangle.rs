@@ -87,7 +87,7 @@ pub fn chebyshev_centre(poly: &[[f64; 2]]) -> Option<([f64; 2], f64)> {
         for b in a + 1..m {
             for c in b + 1..m {
                 let Some((x, t)) = solve_active([&lines[a], &lines[b], &lines[c]]) else { continue };
-                if best.map_or(false, |(_, bt)| t <= bt) {
+                if best.is_some_and(|(_, bt)| t <= bt) {
                     continue;
                 }
                 if lines.iter().all(|l| distance(l, x) >= t - tol) {

@@ -170,19 +170,14 @@ pub const ITERATIVE_TOLERANCE: f64 = 1e-10;
 pub const ITERATIVE_MAX_ITERATIONS: usize = 300;
 
 /// How the centroid map is regularised.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Smoothing {
     /// Walk the grid [`AUTO_KAPPAS`] (0 included) from `kappa = 1` towards smaller measured
-    /// mean `|d_area|` after fold repair, and keep the grid's local minimum.
+    /// mean `|d_area|` after fold repair, and keep the grid's local minimum. The default.
+    #[default]
     Auto,
     /// A fixed `kappa` (0 is the paper's plain centroid map).
     Fixed(f64),
-}
-
-impl Default for Smoothing {
-    fn default() -> Self {
-        Smoothing::Auto
-    }
 }
 
 impl std::str::FromStr for Smoothing {
@@ -239,6 +234,9 @@ pub struct Regularised {
 /// to 0.008. Open surfaces hold none: the hippocampal sheet lost (0.0219 -> 0.0235).
 pub const PUNCTURE_HELD_RINGS: usize = 3;
 
+/// Lifts planar positions onto the domain where areas are measured (the cap or the disk).
+pub type ToDomain<'a> = dyn Fn(&[[f64; 2]]) -> Vec<[f64; 3]> + Sync + 'a;
+
 /// Regularise the transport map `map` of the surface `(vertices, faces)`, repair its folds
 /// and keep the candidate with no fold left and the smallest mean `|d_area|` measured on the
 /// domain (`to_domain` lifts planar positions onto the cap or the planar disk). `fixed`
@@ -255,7 +253,7 @@ pub fn regularise(
     held: &[bool],
     radius: f64,
     smoothing: Smoothing,
-    to_domain: &(dyn Fn(&[[f64; 2]]) -> Vec<[f64; 3]> + Sync),
+    to_domain: &ToDomain<'_>,
 ) -> Result<Regularised, SolveError> {
     // One symbolic factorization for all candidates (they run in parallel on clones).
     let mut primed = CentroidSmoother::new(weights, held);

@@ -65,7 +65,7 @@ fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
     let m = ring.len();
     let d: Vec<[f64; 2]> = ring.iter().map(|q| [q[0] - p[0], q[1] - p[1]]).collect();
     let r: Vec<f64> = d.iter().map(|v| (v[0] * v[0] + v[1] * v[1]).sqrt()).collect();
-    if r.iter().any(|&x| x == 0.0) {
+    if r.contains(&0.0) {
         return None;
     }
     let mut tan_half = Vec::with_capacity(m);

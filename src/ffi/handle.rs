@@ -27,36 +27,52 @@ impl capmesh_v1_mesh {
 }
 
 /// Number of vertices of `mesh` (0 for NULL).
+///
+/// # Safety
+/// `mesh` is NULL or a handle returned by capmesh and not yet released with
+/// `capmesh_v1_mesh_free` (the same holds for every accessor below).
 #[no_mangle]
-pub extern "C" fn capmesh_v1_mesh_vertex_count(mesh: *const capmesh_v1_mesh) -> usize {
-    // SAFETY: handles come from `into_raw` and live until `capmesh_v1_mesh_free`.
+pub unsafe extern "C" fn capmesh_v1_mesh_vertex_count(mesh: *const capmesh_v1_mesh) -> usize {
+    // SAFETY: by the contract above, a non-NULL handle came from `into_raw` and is alive.
     unsafe { mesh.as_ref() }.map_or(0, |m| m.positions.len() / 3)
 }
 
 /// Number of triangles of `mesh` (0 for NULL).
+///
+/// # Safety
+/// As for `capmesh_v1_mesh_vertex_count`.
 #[no_mangle]
-pub extern "C" fn capmesh_v1_mesh_face_count(mesh: *const capmesh_v1_mesh) -> usize {
+pub unsafe extern "C" fn capmesh_v1_mesh_face_count(mesh: *const capmesh_v1_mesh) -> usize {
     // SAFETY: as above.
     unsafe { mesh.as_ref() }.map_or(0, |m| m.triangles.len() / 3)
 }
 
 /// `3 * vertex_count` coordinates (x, y, z per vertex), owned by `mesh` (NULL for NULL).
+///
+/// # Safety
+/// As for `capmesh_v1_mesh_vertex_count`; the pointer is valid until the mesh is released.
 #[no_mangle]
-pub extern "C" fn capmesh_v1_mesh_positions(mesh: *const capmesh_v1_mesh) -> *const f64 {
+pub unsafe extern "C" fn capmesh_v1_mesh_positions(mesh: *const capmesh_v1_mesh) -> *const f64 {
     // SAFETY: as above.
     unsafe { mesh.as_ref() }.map_or(std::ptr::null(), |m| m.positions.as_ptr())
 }
 
 /// `3 * face_count` vertex indices, owned by `mesh` (NULL for NULL).
+///
+/// # Safety
+/// As for `capmesh_v1_mesh_vertex_count`; the pointer is valid until the mesh is released.
 #[no_mangle]
-pub extern "C" fn capmesh_v1_mesh_triangles(mesh: *const capmesh_v1_mesh) -> *const u32 {
+pub unsafe extern "C" fn capmesh_v1_mesh_triangles(mesh: *const capmesh_v1_mesh) -> *const u32 {
     // SAFETY: as above.
     unsafe { mesh.as_ref() }.map_or(std::ptr::null(), |m| m.triangles.as_ptr())
 }
 
 /// Release a mesh returned by capmesh. NULL is accepted and ignored.
+///
+/// # Safety
+/// `mesh` is NULL or a handle returned by capmesh, released at most once.
 #[no_mangle]
-pub extern "C" fn capmesh_v1_mesh_free(mesh: *mut capmesh_v1_mesh) {
+pub unsafe extern "C" fn capmesh_v1_mesh_free(mesh: *mut capmesh_v1_mesh) {
     if !mesh.is_null() {
         // SAFETY: a non-NULL handle came from `into_raw` and is freed once, by contract.
         drop(unsafe { Box::from_raw(mesh) });
@@ -64,8 +80,11 @@ pub extern "C" fn capmesh_v1_mesh_free(mesh: *mut capmesh_v1_mesh) {
 }
 
 /// Release a string returned by capmesh (a JSON report). NULL is accepted and ignored.
+///
+/// # Safety
+/// `text` is NULL or a string returned by capmesh, released at most once.
 #[no_mangle]
-pub extern "C" fn capmesh_v1_string_free(text: *mut c_char) {
+pub unsafe extern "C" fn capmesh_v1_string_free(text: *mut c_char) {
     if !text.is_null() {
         // SAFETY: a non-NULL string came from `CString::into_raw` and is freed once, by contract.
         drop(unsafe { CString::from_raw(text) });

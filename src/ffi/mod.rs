@@ -3,7 +3,7 @@
 //! cancel. `cbindgen` turns this module into `cpp/include/capmesh.h` (see `tools/capi-header`).
 //!
 //! Rules every entry point follows:
-//! - nothing panics across the boundary: each body runs inside [`status::guard`], a panic
+//! - nothing panics across the boundary: each body runs inside `status::guard`, a panic
 //!   becomes [`capmesh_v1_status::CAPMESH_V1_INTERNAL`];
 //! - every pointer is checked for NULL, every count for overflow, every index against the
 //!   vertex count and every coordinate for NaN before the library sees the mesh;

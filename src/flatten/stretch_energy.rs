@@ -182,6 +182,9 @@ fn corner_weights(source: &[f64], faces: &[[u32; 3]], f: &[[f64; 2]]) -> Vec<[f6
 /// Marks a face side with a fixed end (no matrix entry).
 const NO_EDGE: u32 = u32::MAX;
 
+/// One right-hand side per planar coordinate, over the free vertices.
+type RightHandSides = Vec<Vec<f64>>;
+
 /// The layout of the stretch-energy matrices `L_S(f)` of one mesh: how many free-free edges
 /// (free indices, `a < b`, sorted), their compressed-column pattern, and per face the edge of the
 /// side opposite each corner. Each iteration sums its corner weights straight into edges
@@ -219,7 +222,7 @@ impl StretchLayout {
 
     /// `L_S(f)` on the free vertices for the corner `weights`, and the right-hand sides (the
     /// fixed vertices' terms) of `L_S(f) f = 0`.
-    fn system(&self, faces: &[[u32; 3]], weights: &[[f64; 3]], f: &[[f64; 2]], is_fixed: &[bool], index: &[usize]) -> Result<(SparseColMat<usize, f64>, Vec<Vec<f64>>), FlattenError> {
+    fn system(&self, faces: &[[u32; 3]], weights: &[[f64; 3]], f: &[[f64; 2]], is_fixed: &[bool], index: &[usize]) -> Result<(SparseColMat<usize, f64>, RightHandSides), FlattenError> {
         let n_free = self.n_free;
         let mut rhs = vec![vec![0.0; n_free], vec![0.0; n_free]];
         let mut diagonal = vec![0.0; n_free];

@@ -86,6 +86,7 @@ mod tests {
 
     /// `A = diag(m) + L` for the path graph's Laplacian `L` (weights `w`), a tridiagonal SPD
     /// matrix, and its product.
+    #[allow(clippy::type_complexity)]
     fn path_system<'a>(m: &[f64], w: &'a [f64]) -> (Vec<f64>, impl Fn(&[[f64; 2]], &mut [[f64; 2]]) + 'a) {
         let n = m.len();
         let mut diagonal = m.to_vec();

@@ -142,6 +142,9 @@ fn check_finite(x: &[f64], what: &'static str) -> Result<(), SolveError> {
     }
 }
 
+/// An analysed pattern: its columns (`col_ptr`, `row_idx`) and their symbolic factorization.
+type AnalysedPattern = (Vec<usize>, Vec<usize>, SymbolicCholesky<usize>);
+
 /// Sparse Cholesky solver for symmetric positive definite matrices, reusing the symbolic
 /// factorization across matrices with the same pattern.
 ///
@@ -175,7 +178,7 @@ fn check_finite(x: &[f64], what: &'static str) -> Result<(), SolveError> {
 /// [`crate::omt::newton::NESTED_DISSECTION_SITES`]).
 #[derive(Default, Clone)]
 pub struct SpdSolver {
-    symbolic: Option<Arc<(Vec<usize>, Vec<usize>, SymbolicCholesky<usize>)>>,
+    symbolic: Option<Arc<AnalysedPattern>>,
     values: Vec<f64>,
     factored: bool,
     /// How many symbolic factorizations were computed (for reports and tests).

@@ -47,7 +47,7 @@ pub enum OpenMeshError {
     },
 }
 
-/// Options of [`write`].
+/// Options of [`write()`].
 #[derive(Debug, Clone, Default)]
 pub struct WriteOptions {
     /// Binary output for the formats that have one (`.ply`, `.stl`, `.off`; `.om` is always
