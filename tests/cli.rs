@@ -166,6 +166,32 @@ fn poor_maps_are_reported_on_stderr() {
     assert!(!String::from_utf8_lossy(&good.stderr).contains("warning"), "{}", String::from_utf8_lossy(&good.stderr));
 }
 
+/// A closed surface too elongated for the paper's lambda (the bunny stretched 10 times
+/// along its axis) is mapped with a larger one, and stderr says which and why;
+/// `--no-lambda-fallback` gives the transport's error instead, naming the remedy.
+#[test]
+fn elongated_closed_surfaces_fall_back_to_a_larger_lambda() {
+    let dir = temp_dir("lambda_fallback");
+    let mut mesh = capmesh::io::read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap();
+    for p in &mut mesh.vertices {
+        p[0] *= 10.0;
+    }
+    let input = dir.join("bunny_x10.obj");
+    capmesh::io::write_mesh(&input, &mesh).unwrap();
+    let report = dir.join("report.json");
+    let out = capmesh().args(["--quiet", "param"]).arg(&input).arg("-o").arg(dir.join("cap.obj")).arg("--report").arg(&report).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("not kept: lambda = 0.2: optimal transport stalled") && err.contains("mapped with lambda = "), "{err}");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["lambda_fallbacks"][0]["lambda"], 0.2, "{json}");
+    assert!(json["flatten"]["lambda"].as_f64().unwrap() > 0.2, "{json}");
+    let refused = capmesh().args(["--quiet", "param"]).arg(&input).arg("-o").arg(dir.join("cap2.obj")).arg("--no-lambda-fallback").output().unwrap();
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success(), "{err}");
+    assert!(err.contains("bunny_x10.obj") && err.contains("stalled") && err.contains("larger lambda"), "{err}");
+}
+
 #[test]
 fn closed_standard_output_ends_quietly() {
     // `capmesh check mesh | head -1`: the reader goes away before capmesh writes (the pipe's

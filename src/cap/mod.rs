@@ -7,6 +7,7 @@ pub mod brent;
 pub mod coarse_level;
 pub mod domain;
 pub mod kernel_untangle;
+pub mod lambda_fallback;
 pub mod parameterize;
 pub mod planar_transport;
 pub mod puncture_end;
@@ -15,6 +16,7 @@ pub mod stereographic;
 pub mod untangle;
 
 pub use domain::Domain;
+pub use lambda_fallback::{LambdaFallback, DEFAULT_LAMBDA_FALLBACKS};
 pub use parameterize::{parameterize, CapMap, OpenInitialMap, ParamOptions, ParamReport, PunctureEnd, PunctureTrial, RadiusSample};
 pub use regularize::Smoothing;
 pub use stereographic::{inverse_stereographic, radius_of_z_star, stereographic, z_star_of_radius};

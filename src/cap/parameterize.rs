@@ -12,6 +12,7 @@ use super::area_refine::{refine_areas, AreaRefineReport, RefineOptions};
 use super::brent;
 use super::coarse_level::CoarseLevel;
 use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
+use super::lambda_fallback::{is_closed, is_precision_failure, next_lambda, LambdaFallback, DEFAULT_LAMBDA_FALLBACKS, POOR_MAP_AREA_DISTORTION};
 use super::planar_transport::{PlanarTransport, TransportMap};
 pub use super::puncture_end::{PunctureEnd, PunctureTrial};
 use super::regularize::{regularise, Smoothing, SmoothingTrial, PUNCTURE_HELD_RINGS};
@@ -110,6 +111,11 @@ pub struct ParamOptions {
     /// Vertices closer than this times the bounding-box diagonal are welded before mapping
     /// (coincident vertices make zero-area faces). Default `1e-9`.
     pub weld_tolerance: f64,
+    /// Larger `closed.lambda` values tried in turn when the transport of a closed surface
+    /// stalls on a too compressive initial map or its map is poor (see
+    /// [`super::lambda_fallback`]); empty keeps the first `lambda`'s result. Default
+    /// [`DEFAULT_LAMBDA_FALLBACKS`] (0.5, 0.8, 1).
+    pub closed_lambda_fallbacks: Vec<f64>,
 }
 
 impl Default for ParamOptions {
@@ -130,6 +136,7 @@ impl Default for ParamOptions {
             area_refinement: DEFAULT_AREA_REFINEMENT,
             puncture_end: PunctureEnd::Best,
             weld_tolerance: 1e-9,
+            closed_lambda_fallbacks: DEFAULT_LAMBDA_FALLBACKS.to_vec(),
         }
     }
 }
@@ -312,6 +319,10 @@ pub struct ParamReport {
     pub puncture: Option<Puncture>,
     /// Both ends tried when the puncture end is [`PunctureEnd::Best`] (empty otherwise).
     pub puncture_trials: Vec<PunctureTrial>,
+    /// The composition factors tried for a closed surface and not kept (its transport
+    /// stalled or its map was poor, [`ParamOptions::closed_lambda_fallbacks`]); `flatten`
+    /// has the `lambda` kept. Empty when the first worked.
+    pub lambda_fallbacks: Vec<LambdaFallback>,
     /// Wall-clock seconds of the whole parameterization (for [`PunctureEnd::Best`] both
     /// ends' searches, in parallel, and the kept end's second half; the stage seconds below
     /// are the kept end's).
@@ -348,8 +359,71 @@ impl CapMap {
 }
 
 /// Parameterize an open disk-like or closed genus-0 `mesh` onto the domain of `options`.
+///
+/// A closed surface whose transport stalls (its initial map squeezes part of the surface
+/// below double precision) or whose map is poor is mapped again with the next of
+/// [`ParamOptions::closed_lambda_fallbacks`] (see [`super::lambda_fallback`]);
+/// [`ParamReport::lambda_fallbacks`] lists the attempts not kept, `report.flatten` the
+/// `lambda` used, and `report.seconds` then covers every attempt.
 pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
     options.domain.check().map_err(Error::InvalidOption)?;
+    let start = Instant::now();
+    // Every attempt not returned, the best poor map so far and the last transport failure.
+    let mut attempts = Vec::new();
+    let mut best: Option<(f64, CapMap)> = None;
+    let mut failure: Option<Error> = None;
+    let mut attempt = options.clone();
+    loop {
+        let lambda = attempt.closed.lambda;
+        match parameterize_at_lambda(mesh, &attempt, progress) {
+            Ok(map) if !is_poor(&map) => return Ok(with_fallbacks(map, attempts, start)),
+            Ok(map) => {
+                let d = map.report.area_distortion.mean_abs;
+                attempts.push(LambdaFallback { lambda, reason: format!("mean |d_area| {d:.3} is above {POOR_MAP_AREA_DISTORTION}"), mean_abs_area_distortion: Some(d) });
+                if !best.as_ref().is_some_and(|(_, b)| b.report.area_distortion.mean_abs <= d) {
+                    best = Some((lambda, map));
+                }
+            }
+            Err(e) if is_precision_failure(&e) => {
+                attempts.push(LambdaFallback { lambda, reason: e.to_string(), mean_abs_area_distortion: None });
+                failure = Some(e);
+            }
+            Err(e) => return Err(e),
+        }
+        match next_lambda(options, lambda).filter(|_| is_closed(mesh, options)) {
+            Some(next) => attempt.closed.lambda = next,
+            None => {
+                return match (best, failure) {
+                    (Some((kept, map)), _) => {
+                        attempts.retain(|a| a.lambda != kept);
+                        Ok(with_fallbacks(map, attempts, start))
+                    }
+                    (None, Some(e)) => Err(e),
+                    // Each attempt keeps a map or a failure; this is for the compiler.
+                    (None, None) => Err(Error::Unsupported("no parameterization was attempted".into())),
+                };
+            }
+        }
+    }
+}
+
+/// A map poor enough that a closed surface is mapped again with a larger `lambda`: mean
+/// `|d_area|` above [`POOR_MAP_AREA_DISTORTION`] on the adaptive cap.
+fn is_poor(map: &CapMap) -> bool {
+    map.report.domain == Domain::Adaptive.to_string() && !(map.report.area_distortion.mean_abs <= POOR_MAP_AREA_DISTORTION)
+}
+
+/// `map` with the attempts not kept, its wall time counted from `start` when there were any.
+fn with_fallbacks(mut map: CapMap, fallbacks: Vec<LambdaFallback>, start: Instant) -> CapMap {
+    if !fallbacks.is_empty() {
+        map.report.seconds = start.elapsed().as_secs_f64();
+    }
+    map.report.lambda_fallbacks = fallbacks;
+    map
+}
+
+/// [`parameterize`] at `options.closed.lambda`, without fallbacks.
+fn parameterize_at_lambda(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
     let at = |other_end: bool| {
         let mut o = options.clone();
         o.closed.puncture.other_end = other_end;
@@ -654,6 +728,7 @@ pub(super) fn finish(mesh: &TriMesh, s: Searched, options: &ParamOptions, progre
         flatten: flatten_report,
         puncture,
         puncture_trials: Vec::new(),
+        lambda_fallbacks: Vec::new(),
         seconds: start.elapsed().as_secs_f64(),
         flatten_seconds,
         transport_seconds,

@@ -97,7 +97,7 @@ pub enum OmtError {
     #[error("optimal transport Newton system: {0}")]
     Linear(#[from] SolveError),
     /// Damping reached the minimum step without progress.
-    #[error("optimal transport stalled at iteration {iteration} with relative mass error {error:.3e} (the initial map may be too distorted; try a smaller mesh or report this mesh)")]
+    #[error("optimal transport stalled at iteration {iteration} with relative mass error {error:.3e} (the initial map squeezes part of the surface too much: for a closed surface a larger lambda spreads it; else report this mesh)")]
     Stalled {
         /// Iteration.
         iteration: usize,

@@ -187,12 +187,26 @@ pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(
 }
 
 /// Mean |d_area| above which the map is reported as poor on stderr (the bundled meshes map
-/// at 0.008-0.13; a failed fold repair gives 0.4 and more).
-const POOR_AREA_DISTORTION: f64 = 0.3;
+/// at 0.008-0.13; a failed fold repair gives 0.4 and more); closed surfaces are mapped again
+/// with a larger lambda above it first.
+const POOR_AREA_DISTORTION: f64 = capmesh::cap::lambda_fallback::POOR_MAP_AREA_DISTORTION;
 
 /// Say on stderr when a map is fold-free but far from area preserving, rather than let a poor
-/// result pass silently.
+/// result pass silently, and when a closed surface needed a larger `lambda` than asked.
 fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
+    if let capmesh::cap::parameterize::FlattenReport::Closed(used) = &r.flatten {
+        for tried in &r.lambda_fallbacks {
+            eprintln!("warning: {}: not kept: lambda = {}: {}", input.display(), tried.lambda, tried.reason);
+        }
+        if !r.lambda_fallbacks.is_empty() {
+            eprintln!(
+                "warning: {}: mapped with lambda = {} (a less conformal initial map that squeezes the surface less; \
+                 report: lambda_fallbacks; --no-lambda-fallback keeps the first lambda's result)",
+                input.display(),
+                used.lambda
+            );
+        }
+    }
     if r.domain == "adaptive" && r.area_distortion.mean_abs > POOR_AREA_DISTORTION {
         eprintln!(
             "warning: {}: mean |d_area| = {:.3} is far from area preserving (fold repair moved a vertex by {:.0}% of the disk radius); \

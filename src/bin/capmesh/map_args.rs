@@ -17,6 +17,12 @@ pub struct MapArgs {
     /// lambda of the composite initial map of open surfaces.
     #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_OPEN_LAMBDA)]
     pub open_lambda: f64,
+    /// Closed surfaces: keep the result of --lambda (an error or a poor map) instead of
+    /// mapping again with a larger lambda (0.5, 0.8, then 1) when the transport stalls on an
+    /// initial map that squeezes part of the surface below double precision, or the map's
+    /// mean |d_area| is above 0.3 (very elongated surfaces).
+    #[arg(long)]
+    pub no_lambda_fallback: bool,
     /// Regularisation of the final centroid map: auto (default) or a strength >= 0
     /// (0 is the paper's plain centroid map).
     #[arg(long, default_value = "auto")]
@@ -42,6 +48,9 @@ impl MapArgs {
         options.open_initial = self.initial;
         options.closed.lambda = self.lambda;
         options.open_lambda = self.open_lambda;
+        if self.no_lambda_fallback {
+            options.closed_lambda_fallbacks.clear();
+        }
         options.smoothing = self.smoothing;
         options.area_refinement = self.area_refinement;
         options.puncture_end = self.puncture_end;

@@ -4,6 +4,7 @@
 //! command then exits non-zero, after writing the whole CSV.
 
 use crate::read;
+use capmesh::cap::parameterize::FlattenReport;
 use capmesh::cap::{Domain, ParamOptions};
 use capmesh::harmonics::{analyze, HarmonicsOptions, HarmonicsReport};
 use capmesh::io::Format;
@@ -25,7 +26,7 @@ pub struct ShapeArgs {
 
 /// CSV columns, in order.
 const HEADER: &str = "file,status,vertices,faces,kind,z_star,aspect_ratio,ellipsoid_aspect_ratio,\
-                      sigma1,sigma2,sigma3,mean_abs_area_distortion,seconds,error";
+                      sigma1,sigma2,sigma3,mean_abs_area_distortion,lambda,seconds,error";
 
 /// One mesh's outcome.
 struct Row {
@@ -138,12 +139,18 @@ fn csv_line(row: &Row) -> String {
         Ok((faces, r)) => {
             let kind = if r.param.kind == SurfaceKind::OpenDisk.to_string() { "open" } else { "closed" };
             let [s1, s2, s3] = r.singular_values;
+            // The composition factor a closed surface was mapped with (another than asked
+            // when it fell back, see `cap::lambda_fallback`).
+            let lambda = match (&r.param.flatten, kind) {
+                (FlattenReport::Closed(f), "closed") => f.lambda.to_string(),
+                _ => String::new(),
+            };
             format!(
-                "{file},ok,{},{faces},{kind},{},{},{},{s1},{s2},{s3},{},{:.3},",
+                "{file},ok,{},{faces},{kind},{},{},{},{s1},{s2},{s3},{},{lambda},{:.3},",
                 r.vertices, r.z_star, r.aspect_ratio, r.ellipsoid_aspect_ratio, r.param.area_distortion.mean_abs, r.seconds
             )
         }
-        Err(e) => format!("{file},failed,,,,,,,,,,,,{}", quote(e)),
+        Err(e) => format!("{file},failed,,,,,,,,,,,,,{}", quote(e)),
     }
 }
 

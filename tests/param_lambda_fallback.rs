@@ -1,0 +1,81 @@
+//! Very elongated closed surfaces (`cap::lambda_fallback`): the shared bunny stretched along
+//! its principal axis. At the paper's `lambda = 0.2` its initial map squeezes the far end
+//! below double precision and the transport stalls (10 times), or the map comes out far from
+//! area preserving (50 times); the parameterization then maps it again with a larger
+//! `lambda`, keeps a fold-free map within the poor-map threshold and says what it tried. The
+//! unstretched bunny keeps `lambda = 0.2` with nothing tried, and without fallbacks the
+//! stalled transport is the error.
+
+use capmesh::cap::lambda_fallback::POOR_MAP_AREA_DISTORTION;
+use capmesh::cap::parameterize::FlattenReport;
+use capmesh::cap::{parameterize, CapMap, ParamOptions};
+use capmesh::io::read_mesh;
+use capmesh::mesh::TriMesh;
+use capmesh::omt::OmtError;
+use capmesh::progress::NoProgress;
+use capmesh::Error;
+use std::path::PathBuf;
+
+/// The bunny with its `x` coordinates (its principal axis once stretched) times `factor`.
+fn stretched_bunny(factor: f64) -> TriMesh {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/closed_bunny_npm.obj.gz");
+    let mut mesh = read_mesh(&path).unwrap_or_else(|e| panic!("{e}"));
+    for p in &mut mesh.vertices {
+        p[0] *= factor;
+    }
+    mesh
+}
+
+fn used_lambda(map: &CapMap) -> f64 {
+    match &map.report.flatten {
+        FlattenReport::Closed(r) => r.lambda,
+        FlattenReport::Open(_) => panic!("a closed surface reports the closed flattening"),
+    }
+}
+
+/// Fold-free, within the poor-map threshold, and every attempt listed below the `lambda`
+/// kept, in increasing order.
+fn check_rescued(map: &CapMap, name: &str) {
+    let r = &map.report;
+    assert_eq!(r.flipped_faces, 0, "{name}: folded faces");
+    assert!(r.area_distortion.mean_abs <= POOR_MAP_AREA_DISTORTION, "{name}: mean |d_area| {}", r.area_distortion.mean_abs);
+    let kept = used_lambda(map);
+    assert!(!r.lambda_fallbacks.is_empty(), "{name}: nothing tried before lambda {kept}");
+    assert_eq!(r.lambda_fallbacks[0].lambda, 0.2, "{name}: the paper's lambda first");
+    for pair in r.lambda_fallbacks.windows(2) {
+        assert!(pair[0].lambda < pair[1].lambda, "{name}: {:?}", r.lambda_fallbacks);
+    }
+    assert!(r.lambda_fallbacks.iter().all(|f| f.lambda < kept), "{name}: kept {kept}, tried {:?}", r.lambda_fallbacks);
+}
+
+#[test]
+fn the_bunny_keeps_the_papers_lambda() {
+    let map = parameterize(&stretched_bunny(1.0), &ParamOptions::default(), &NoProgress).expect("bunny");
+    assert_eq!(used_lambda(&map), 0.2);
+    assert!(map.report.lambda_fallbacks.is_empty(), "{:?}", map.report.lambda_fallbacks);
+}
+
+#[test]
+fn a_stalled_transport_is_retried_with_a_larger_lambda() {
+    let mesh = stretched_bunny(10.0);
+    let map = parameterize(&mesh, &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("bunny x10: {e}"));
+    check_rescued(&map, "bunny x10");
+    let first = &map.report.lambda_fallbacks[0];
+    assert!(first.mean_abs_area_distortion.is_none() && first.reason.contains("stalled"), "{first:?}");
+    // Without fallbacks the first failure is the answer.
+    let options = ParamOptions { closed_lambda_fallbacks: Vec::new(), ..Default::default() };
+    match parameterize(&mesh, &options, &NoProgress) {
+        Err(Error::Transport(OmtError::Stalled { .. })) => {}
+        Err(e) => panic!("bunny x10 without fallbacks: unexpected error {e}"),
+        Ok(map) => panic!("bunny x10 mapped at lambda 0.2 (mean |d_area| {}): update the fallback docs", map.report.area_distortion.mean_abs),
+    }
+}
+
+#[test]
+fn a_poor_map_is_replaced_by_a_better_one() {
+    let map = parameterize(&stretched_bunny(50.0), &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("bunny x50: {e}"));
+    check_rescued(&map, "bunny x50");
+    let poor = &map.report.lambda_fallbacks[0];
+    let d = poor.mean_abs_area_distortion.expect("lambda 0.2 gave a map");
+    assert!(d > POOR_MAP_AREA_DISTORTION && d > 2.0 * map.report.area_distortion.mean_abs, "{poor:?}");
+}
