@@ -192,6 +192,32 @@ fn elongated_closed_surfaces_fall_back_to_a_larger_lambda() {
     assert!(err.contains("bunny_x10.obj") && err.contains("stalled") && err.contains("larger lambda"), "{err}");
 }
 
+/// An open surface whose boundary is one small triangle (the bunny with one face removed):
+/// the cap's whole rim is pulled back onto three short edges and a few remeshed faces next to
+/// them have zero area. The remesh says so on stderr and counts them in its report rather
+/// than pass them silently.
+#[test]
+fn zero_area_faces_in_a_remesh_are_reported() {
+    let dir = temp_dir("zero_area");
+    let mut mesh = capmesh::io::read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap();
+    mesh.faces.remove(0);
+    let input = dir.join("bunny_hole.obj");
+    capmesh::io::write_mesh(&input, &mesh).unwrap();
+    let report = dir.join("report.json");
+    let out = capmesh().args(["--quiet", "remesh"]).arg(&input).arg("-o").arg(dir.join("out.ply")).arg("--report").arg(&report).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let count = json["zero_area_faces"].as_u64().expect("zero_area_faces in the report");
+    let checked = capmesh::mesh::inspect(&capmesh::io::read_mesh(&dir.join("out.ply")).unwrap()).unwrap();
+    assert_eq!(count as usize, checked.zero_area_faces, "the report and `check` count the same faces");
+    if count > 0 {
+        assert!(err.contains("zero-area faces"), "{err}");
+    } else {
+        assert!(!err.contains("zero-area"), "{err}");
+    }
+}
+
 #[test]
 fn closed_standard_output_ends_quietly() {
     // `capmesh check mesh | head -1`: the reader goes away before capmesh writes (the pipe's

@@ -1,7 +1,7 @@
 //! Remeshing through the cap (paper Sec. 4.2) on every shared mesh: the output is manifold
 //! with the input's topology (an open disk, or a closed genus-0 surface whose bottom is
 //! pulled back onto the punctured quad), the uniform grid hits the requested face count
-//! within 10%, and its face-area deviation is below the input's.
+//! within 10%, its face-area deviation is below the input's, and no face has zero area.
 
 use capmesh::io::read_mesh;
 use capmesh::mesh::{validate, SurfaceKind};
@@ -38,6 +38,8 @@ fn check(name: &str, max_relative_to_input: f64) {
     // surfaces, its planar orientation taken from the flat bottom's reversed faces).
     let eq = &rep.area_equalization;
     assert!(eq.sweeps > 1 && eq.mean_abs_after < 0.9 * eq.mean_abs_before, "{name}: equalization {eq:?}");
+    // No degenerate output face (see `RemeshMetrics::zero_area_faces` for where they arise).
+    assert_eq!(q.zero_area_faces, 0, "{name}: zero-area faces in the remesh");
     // Pulled-back vertices lie on the original surface.
     assert!(q.d_surface_vertex_relative < 1e-9, "{name}: {}", q.d_surface_vertex_relative);
     assert!(q.d_surface_sampled_relative < 0.01, "{name}: {}", q.d_surface_sampled_relative);

@@ -97,7 +97,8 @@ pub unsafe extern "C" fn capmesh_v1_remesh(
 
 /// Remeshing quality of `remeshed` against `original` (any two triangle meshes): the JSON
 /// object has `faces`, `vertices`, `d_face`, `d_face_relative`, `d_surface_vertex(_relative)`,
-/// `d_surface_sampled(_relative)` and `min_angle_deg`. `out_report_json` must not be NULL.
+/// `d_surface_sampled(_relative)`, `min_angle_deg` and `zero_area_faces`. `out_report_json`
+/// must not be NULL.
 ///
 /// # Safety
 /// As `capmesh_v1_parameterize`.

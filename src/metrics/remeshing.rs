@@ -6,6 +6,7 @@
 
 use super::closest::SurfaceDistance;
 use crate::mesh::geometry::{face_areas, triangle_angles};
+use crate::mesh::repair::{zero_area_faces, DEFAULT_ZERO_AREA_REL_TOL};
 use crate::mesh::TriMesh;
 use rayon::prelude::*;
 
@@ -30,6 +31,12 @@ pub struct RemeshMetrics {
     pub d_surface_sampled_relative: f64,
     /// Smallest angle of the remeshed surface, degrees.
     pub min_angle_deg: f64,
+    /// Faces of the remeshed surface with (relatively) zero area
+    /// ([`crate::mesh::repair::zero_area_faces`] at its default tolerance). capmesh's remeshes
+    /// of the shared meshes have none; an open surface whose boundary is a single small
+    /// triangle (a closed scan with one face missing) gets a few next to it, where the whole
+    /// rim of the cap is pulled back onto three short edges.
+    pub zero_area_faces: usize,
 }
 
 /// Face area deviation `(d_face, d_face / mean area)`.
@@ -105,5 +112,6 @@ pub fn remesh_metrics(original: &TriMesh, remeshed: &TriMesh) -> RemeshMetrics {
         d_surface_sampled: d_sampled,
         d_surface_sampled_relative: d_sampled / diag,
         min_angle_deg: if min_angle.is_finite() { min_angle } else { 0.0 },
+        zero_area_faces: zero_area_faces(remeshed, DEFAULT_ZERO_AREA_REL_TOL).len(),
     }
 }

@@ -225,6 +225,7 @@ fn print_quality(q: &capmesh::metrics::RemeshMetrics) -> Result<(), String> {
     outln!("d_surface_vertex           {:.6e} ({:.3e} of the diagonal)", q.d_surface_vertex, q.d_surface_vertex_relative);
     outln!("d_surface_sampled          {:.6e} ({:.3e} of the diagonal)", q.d_surface_sampled, q.d_surface_sampled_relative);
     outln!("min_angle_deg              {:.2}", q.min_angle_deg);
+    outln!("zero_area_faces            {}", q.zero_area_faces);
     Ok(())
 }
 
@@ -253,6 +254,14 @@ fn run(cli: Cli) -> Result<(), String> {
             let write_seconds = t_write.elapsed().as_secs_f64();
             outln!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
             warn_if_poor(&input, &rep.param);
+            if rep.quality.zero_area_faces > 0 {
+                eprintln!(
+                    "warning: {}: the remesh has {} zero-area faces (next to a very short boundary, the whole rim of the cap is pulled back onto a few edges); \
+                     fill the hole and remesh the closed surface, or remove them with an edge collapse",
+                    input.display(),
+                    rep.quality.zero_area_faces
+                );
+            }
             print_quality(&rep.quality)?;
             if let Some(path) = report {
                 #[derive(serde::Serialize)]
@@ -265,6 +274,7 @@ fn run(cli: Cli) -> Result<(), String> {
                     d_surface_vertex_relative: f64,
                     d_surface_sampled_relative: f64,
                     min_angle_deg: f64,
+                    zero_area_faces: usize,
                     seconds: f64,
                     read_seconds: f64,
                     pullback_seconds: f64,
@@ -286,6 +296,7 @@ fn run(cli: Cli) -> Result<(), String> {
                         d_surface_vertex_relative: q.d_surface_vertex_relative,
                         d_surface_sampled_relative: q.d_surface_sampled_relative,
                         min_angle_deg: q.min_angle_deg,
+                        zero_area_faces: q.zero_area_faces,
                         seconds: rep.seconds,
                         read_seconds,
                         pullback_seconds: rep.pullback_seconds,
