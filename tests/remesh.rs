@@ -123,3 +123,33 @@ fn lat_long_grid_has_rings_times_sectors_layout() {
     assert_eq!(out.n_faces(), sectors + 2 * sectors * (rings - 1));
     assert_eq!(validate(&out).unwrap().0, SurfaceKind::OpenDisk);
 }
+
+/// Coarse inputs, whose boundary polygon (an open surface's boundary, a closed one's punctured
+/// quad) leaves wide circular segments of the disk uncovered: cap points there used to be
+/// located on the polygon's sides, and the faces between them pulled back with zero area
+/// (2026-12-01, before the rim band: the icosphere of 42 vertices 99 of 5000 faces, 165 of the
+/// lat/long mesh; the bunny with one face removed 9 and 60; a two-triangle square 1614 and
+/// 930). The rim band now goes onto the polygon.
+#[test]
+fn coarse_inputs_remesh_without_zero_area_faces() {
+    let mut holed = read_mesh(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/closed_bunny_npm.obj.gz")).unwrap();
+    holed.faces.remove(0);
+    let square = capmesh::TriMesh::new(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.1]], vec![[0, 1, 2], [1, 3, 2]]);
+    let cases = [
+        ("icosphere 12", capmesh::mesh::shapes::icosphere(0)),
+        ("icosphere 42", capmesh::mesh::shapes::icosphere(1)),
+        ("icosphere 162", capmesh::mesh::shapes::icosphere(2)),
+        ("bunny with a hole", holed),
+        ("two triangles", square),
+    ];
+    for (name, mesh) in cases {
+        for grid in [CapGrid::Uniform { faces: 5000 }, CapGrid::LatLong { rings: 40, sectors: 64 }] {
+            let (out, rep) = remesh(&mesh, &RemeshOptions { grid, ..Default::default() }, &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let (input_kind, _) = validate(&mesh).unwrap();
+            let (kind, _) = validate(&out).unwrap_or_else(|e| panic!("{name} {grid:?}: remeshed mesh invalid: {e}"));
+            assert_eq!(kind, input_kind, "{name} {grid:?}");
+            assert_eq!(rep.quality.zero_area_faces, 0, "{name} {grid:?}: zero-area faces");
+            assert!(rep.quality.d_surface_vertex_relative < 1e-9, "{name} {grid:?}: vertices off the surface");
+        }
+    }
+}

@@ -33,9 +33,8 @@ pub struct RemeshMetrics {
     pub min_angle_deg: f64,
     /// Faces of the remeshed surface with (relatively) zero area
     /// ([`crate::mesh::repair::zero_area_faces`] at its default tolerance). capmesh's remeshes
-    /// of the shared meshes have none; an open surface whose boundary is a single small
-    /// triangle (a closed scan with one face missing) gets a few next to it, where the whole
-    /// rim of the cap is pulled back onto three short edges.
+    /// have none on the shared meshes and on coarse inputs (tests/remesh.rs; see
+    /// [`crate::remesh::pullback::rim_band_into_polygon`] for where they came from).
     pub zero_area_faces: usize,
 }
 

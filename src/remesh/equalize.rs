@@ -13,19 +13,21 @@
 
 use super::locate::Locator;
 use crate::cap::area_refine::{refine_towards, AreaRefineReport, RefineOptions};
-use crate::cap::stereographic;
 use crate::mesh::geometry::triangle_area;
 use crate::mesh::TriMesh;
 use std::sync::atomic::{AtomicU32, Ordering};
 
-/// Equalize the areas of `out` (the cap mesh `cap` pulled back onto `surface`; positions
-/// updated in place). `surface_faces` are the faces of `surface` that the plane map `plane`
-/// covers; vertices of `cap` from `first_fixed` on do not move.
+/// Equalize the areas of `out` (the cap mesh `cap` pulled back onto `surface` from the planar
+/// points `start`, one per cap vertex; positions updated in place) towards the cap's face
+/// areas. `surface_faces` are the faces of `surface` that the plane map `plane` covers;
+/// vertices of `cap` from `first_fixed` on do not move.
+#[allow(clippy::too_many_arguments)]
 pub fn equalize_areas(
     surface: &TriMesh,
     surface_faces: &[[u32; 3]],
     plane: &[[f64; 2]],
     cap: &TriMesh,
+    start: Vec<[f64; 2]>,
     first_fixed: usize,
     out: &mut [[f64; 3]],
     sweeps: usize,
@@ -56,7 +58,7 @@ pub fn equalize_areas(
             None => [f64::NAN; 3],
         }
     };
-    let mut q: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
+    let mut q = start;
     let target: Vec<f64> = cap.faces.iter().map(|f| triangle_area(cap.vertices[f[0] as usize], cap.vertices[f[1] as usize], cap.vertices[f[2] as usize])).collect();
     let fixed: Vec<bool> = (0..cap.vertices.len()).map(|v| v >= first_fixed).collect();
     refine_towards(&mut q, out, &target, &cap.faces, &fixed, &lift, RefineOptions::plain(sweeps))

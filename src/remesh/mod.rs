@@ -9,6 +9,8 @@ pub mod pullback;
 use crate::cap::area_refine::AreaRefineReport;
 use crate::cap::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
+use crate::cap::stereographic;
+use crate::mesh::topology::is_boundary_vertex;
 use crate::mesh::{SurfaceKind, TriMesh};
 use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
@@ -93,6 +95,17 @@ pub struct RemeshReport {
     pub metrics_seconds: f64,
 }
 
+/// The planar positions of the `vertices` on the rim (an open surface's boundary, a closed
+/// one's punctured quad), by angle and without repeats: the polygon the planar map covers;
+/// and the radius of the circle they lie on.
+fn polygon_of(vertices: impl Iterator<Item = u32>, plane: &[[f64; 2]]) -> (Vec<[f64; 2]>, f64) {
+    let mut corners: Vec<[f64; 2]> = vertices.filter_map(|v| plane.get(v as usize).copied()).collect();
+    corners.sort_by(|a, b| a[1].atan2(a[0]).total_cmp(&b[1].atan2(b[0])));
+    corners.dedup();
+    let rim_radius = corners.iter().map(|c| c[0].hypot(c[1])).fold(0.0, f64::max);
+    (corners, rim_radius)
+}
+
 /// Remesh a surface through its adaptive cap: an open disk gives an open disk, a closed
 /// genus-0 surface a closed genus-0 mesh (the cap grid closed by a flat bottom disk that is
 /// pulled back onto the punctured quad).
@@ -117,18 +130,32 @@ pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) 
     // The rim (the cap grid's last ring) and the bottom stay where the pull-back put them.
     let rim = cap.vertices.iter().rev().take_while(|p| Some(p[2]) == cap.vertices.last().map(|q| q[2])).count();
     let first_fixed = cap.vertices.len() - rim;
-    let (grid_mesh, mut positions) = if closed {
+    // Each cap vertex's point in the plane of the map, where the pull-back locates it and
+    // the equalization moves it.
+    // The planar map covers the polygon of its boundary (an open surface's boundary, a closed
+    // one's punctured quad), inscribed in the rim: cap points near the rim are moved inside it
+    // ([`pullback::rim_band_into_polygon`]).
+    let (grid_mesh, planar, mut positions) = if closed {
         let grid = grid::close_bottom(cap);
-        let positions = pullback::pull_back_closed(mesh, &map, &grid).ok_or_else(no_face)?;
-        (grid.mesh, positions)
+        let split = grid.first_bottom_vertex.min(grid.mesh.vertices.len());
+        let mut planar: Vec<[f64; 2]> = grid.mesh.vertices.iter().map(|&x| stereographic(x)).collect();
+        let quad: Vec<u32> = map.bottom_faces.iter().flat_map(|&f| mesh.faces[f]).collect();
+        let (corners, rim_radius) = polygon_of(quad.into_iter(), &map.plane);
+        pullback::rim_band_into_polygon(&mut planar[..split], &corners, rim_radius);
+        let positions = pullback::pull_back_closed_from(mesh, &map, &grid, &planar[..split]).ok_or_else(no_face)?;
+        (grid.mesh, planar, positions)
     } else {
-        let positions = pullback::pull_back(mesh, &map.plane, &cap.vertices).ok_or_else(no_face)?;
-        (cap, positions)
+        let mut planar: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
+        let boundary = is_boundary_vertex(mesh);
+        let (corners, rim_radius) = polygon_of((0..mesh.n_vertices() as u32).filter(|&v| boundary[v as usize]), &map.plane);
+        pullback::rim_band_into_polygon(&mut planar, &corners, rim_radius);
+        let positions = pullback::pull_back_planar(mesh, &map.plane, &planar).ok_or_else(no_face)?;
+        (cap, planar, positions)
     };
     let pullback_seconds = t_pull.elapsed().as_secs_f64();
     progress::check(progress, Stage::Remesh, 0.5, "equalizing the areas")?;
     let t_eq = Instant::now();
-    let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &grid_mesh, first_fixed, &mut positions, options.area_equalization);
+    let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &grid_mesh, planar, first_fixed, &mut positions, options.area_equalization);
     let equalize_seconds = t_eq.elapsed().as_secs_f64();
     let out = TriMesh::new(positions, grid_mesh.faces);
     let t_metrics = Instant::now();

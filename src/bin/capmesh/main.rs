@@ -256,8 +256,8 @@ fn run(cli: Cli) -> Result<(), String> {
             warn_if_poor(&input, &rep.param);
             if rep.quality.zero_area_faces > 0 {
                 eprintln!(
-                    "warning: {}: the remesh has {} zero-area faces (next to a very short boundary, the whole rim of the cap is pulled back onto a few edges); \
-                     fill the hole and remesh the closed surface, or remove them with an edge collapse",
+                    "warning: {}: the remesh has {} zero-area faces; check the input with `capmesh check`, try fewer faces, \
+                     or remove them with an edge collapse",
                     input.display(),
                     rep.quality.zero_area_faces
                 );
