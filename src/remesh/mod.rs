@@ -95,16 +95,21 @@ pub struct RemeshReport {
     pub metrics_seconds: f64,
 }
 
-/// The planar positions of the `vertices` on the rim (an open surface's boundary, a closed
-/// one's punctured quad), by angle and without repeats: the polygon the planar map covers;
-/// and the radius of the circle they lie on.
+/// The planar positions of those `vertices` that lie on the rim (an open surface's boundary,
+/// a closed one's punctured quad), by angle and without repeats: the polygon the planar map
+/// covers; and the rim's radius. Points off the rim (a seam that the parameterization welded
+/// shut looks like boundary in the input) are left out.
 fn polygon_of(vertices: impl Iterator<Item = u32>, plane: &[[f64; 2]]) -> (Vec<[f64; 2]>, f64) {
-    let mut corners: Vec<[f64; 2]> = vertices.filter_map(|v| plane.get(v as usize).copied()).collect();
+    let points: Vec<[f64; 2]> = vertices.filter_map(|v| plane.get(v as usize).copied()).collect();
+    let rim_radius = points.iter().map(|c| c[0].hypot(c[1])).fold(0.0, f64::max);
+    let mut corners: Vec<[f64; 2]> = points.into_iter().filter(|c| c[0].hypot(c[1]) >= (1.0 - RIM_TOLERANCE) * rim_radius).collect();
     corners.sort_by(|a, b| a[1].atan2(a[0]).total_cmp(&b[1].atan2(b[0])));
     corners.dedup();
-    let rim_radius = corners.iter().map(|c| c[0].hypot(c[1])).fold(0.0, f64::max);
     (corners, rim_radius)
 }
+
+/// Relative distance below the rim's radius within which a boundary point counts as on it.
+const RIM_TOLERANCE: f64 = 1e-6;
 
 /// Remesh a surface through its adaptive cap: an open disk gives an open disk, a closed
 /// genus-0 surface a closed genus-0 mesh (the cap grid closed by a flat bottom disk that is
@@ -131,15 +136,14 @@ pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) 
     let rim = cap.vertices.iter().rev().take_while(|p| Some(p[2]) == cap.vertices.last().map(|q| q[2])).count();
     let first_fixed = cap.vertices.len() - rim;
     // Each cap vertex's point in the plane of the map, where the pull-back locates it and
-    // the equalization moves it.
-    // The planar map covers the polygon of its boundary (an open surface's boundary, a closed
-    // one's punctured quad), inscribed in the rim: cap points near the rim are moved inside it
-    // ([`pullback::rim_band_into_polygon`]).
+    // the equalization moves it. The planar map covers the polygon of its boundary (an open
+    // surface's boundary, a closed one's punctured quad), inscribed in the rim: cap points
+    // near the rim are moved inside it ([`pullback::rim_band_into_polygon`]).
     let (grid_mesh, planar, mut positions) = if closed {
         let grid = grid::close_bottom(cap);
         let split = grid.first_bottom_vertex.min(grid.mesh.vertices.len());
         let mut planar: Vec<[f64; 2]> = grid.mesh.vertices.iter().map(|&x| stereographic(x)).collect();
-        let quad: Vec<u32> = map.bottom_faces.iter().flat_map(|&f| mesh.faces[f]).collect();
+        let quad: Vec<u32> = map.bottom_faces.iter().filter_map(|&f| mesh.faces.get(f)).flatten().copied().collect();
         let (corners, rim_radius) = polygon_of(quad.into_iter(), &map.plane);
         pullback::rim_band_into_polygon(&mut planar[..split], &corners, rim_radius);
         let positions = pullback::pull_back_closed_from(mesh, &map, &grid, &planar[..split]).ok_or_else(no_face)?;
