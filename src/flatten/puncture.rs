@@ -6,7 +6,11 @@
 //! point of the principal axis. A quadrilateral is regular enough when the ratio of its longest
 //! to shortest side and of its longer to shorter diagonal are both at most
 //! [`PunctureOptions::max_ratio`]; the first such candidate wins, else the most regular of the
-//! first [`PunctureOptions::candidates`].
+//! first [`PunctureOptions::candidates`] (ours:) when that one's worse ratio is at most
+//! [`PunctureOptions::acceptable_ratio`], else the first edge farther on, within
+//! [`PunctureOptions::reach`] of the axis extent, whose quadrilateral is (or the most regular
+//! there). A UV sphere's poles have only slivers around them: punctured at one (ratio 33) the
+//! ellipsoid of 30k vertices mapped at mean |d_area| 16.6, whatever `lambda`.
 
 use crate::mesh::geometry::{add, dot, norm, scale, sub, triangle_area};
 
@@ -17,13 +21,19 @@ pub struct PunctureOptions {
     pub max_ratio: f64,
     /// How many candidate edges near the bottom to examine. Default 500.
     pub candidates: usize,
+    /// When the most regular of the first candidates has a side or diagonal ratio above this,
+    /// look farther from the bottom. Default 2.
+    pub acceptable_ratio: f64,
+    /// How far from the bottom point the farther search goes, in units of the surface's
+    /// extent along its principal axis. Default 0.25.
+    pub reach: f64,
     /// Puncture at the other end of the principal axis (the input's top). Default `false`.
     pub other_end: bool,
 }
 
 impl Default for PunctureOptions {
     fn default() -> Self {
-        Self { max_ratio: 1.3, candidates: 500, other_end: false }
+        Self { max_ratio: 1.3, candidates: 500, acceptable_ratio: 2.0, reach: 0.25, other_end: false }
     }
 }
 
@@ -131,7 +141,8 @@ pub fn choose_puncture(
 ) -> Option<Puncture> {
     let (c, axis) = principal_axis(vertices, faces);
     let axis = if options.other_end { scale(axis, -1.0) } else { axis };
-    let lowest = vertices.iter().map(|p| dot(sub(*p, c), axis)).fold(f64::INFINITY, f64::min);
+    let heights = vertices.iter().map(|p| dot(sub(*p, c), axis));
+    let (lowest, highest) = heights.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| (lo.min(h), hi.max(h)));
     let bottom = add(c, scale(axis, lowest));
     let mut order: Vec<(f64, usize)> = edges
         .iter()
@@ -146,37 +157,58 @@ pub fn choose_puncture(
         return None;
     }
     order.select_nth_unstable_by(k - 1, |x, y| x.0.total_cmp(&y.0));
-    order.truncate(k);
-    order.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let (near, far) = order.split_at_mut(k);
+    near.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let quad_at = |i: usize| quadrilateral(vertices, faces, edges[i], axis);
     let mut best: Option<(f64, Puncture)> = None;
-    for &(_, i) in &order {
-        let (a, b, f0, f1) = edges[i];
-        let c0 = third(faces[f0], a, b)?;
-        let c1 = third(faces[f1], a, b)?;
-        // f0 = (a, b, c0) in cyclic order; f1 = (b, a, c1). The punctured surface's boundary
-        // runs opposite to the removed faces' outer edges: a -> c0 -> b -> c1.
-        let quad = [a, c0, b, c1];
-        let p = quad.map(|v| vertices[v as usize]);
-        let sides: Vec<f64> = (0..4).map(|k| norm(sub(p[(k + 1) % 4], p[k]))).collect();
-        let smin = sides.iter().cloned().fold(f64::INFINITY, f64::min);
-        let smax = sides.iter().cloned().fold(0.0, f64::max);
-        let d1 = norm(sub(p[0], p[2]));
-        let d2 = norm(sub(p[1], p[3]));
-        if smin <= 0.0 || d1.min(d2) <= 0.0 {
-            continue;
-        }
-        let side_ratio = smax / smin;
-        let diagonal_ratio = d1.max(d2) / d1.min(d2);
-        let cand = Puncture { faces: [f0, f1], quad, side_ratio, diagonal_ratio, axis };
-        if side_ratio <= options.max_ratio && diagonal_ratio <= options.max_ratio {
+    for &(_, i) in near.iter() {
+        let Some((score, cand)) = quad_at(i) else { continue };
+        if score <= options.max_ratio {
             return Some(cand);
         }
-        let score = side_ratio.max(diagonal_ratio);
-        if best.as_ref().map_or(true, |(s, _)| score < *s) {
+        if !best.as_ref().is_some_and(|(s, _)| *s <= score) {
+            best = Some((score, cand));
+        }
+    }
+    if best.as_ref().is_some_and(|(s, _)| *s <= options.acceptable_ratio) {
+        return best.map(|(_, p)| p);
+    }
+    // Only poor quadrilaterals near the bottom: look farther, nearest first.
+    let reach = options.reach * (highest - lowest);
+    let mut farther: Vec<(f64, usize)> = far.iter().copied().filter(|&(d, _)| d <= reach).collect();
+    farther.sort_by(|x, y| x.0.total_cmp(&y.0));
+    for (_, i) in farther {
+        let Some((score, cand)) = quad_at(i) else { continue };
+        if score <= options.acceptable_ratio {
+            return Some(cand);
+        }
+        if !best.as_ref().is_some_and(|(s, _)| *s <= score) {
             best = Some((score, cand));
         }
     }
     best.map(|(_, p)| p)
+}
+
+/// The quadrilateral of the two faces at the interior edge `(a, b, f0, f1)` and its score,
+/// the worse of its side and diagonal ratios; `None` when it has a zero side or diagonal.
+fn quadrilateral(vertices: &[[f64; 3]], faces: &[[u32; 3]], (a, b, f0, f1): (u32, u32, usize, usize), axis: [f64; 3]) -> Option<(f64, Puncture)> {
+    let c0 = third(faces[f0], a, b)?;
+    let c1 = third(faces[f1], a, b)?;
+    // f0 = (a, b, c0) in cyclic order; f1 = (b, a, c1). The punctured surface's boundary
+    // runs opposite to the removed faces' outer edges: a -> c0 -> b -> c1.
+    let quad = [a, c0, b, c1];
+    let p = quad.map(|v| vertices[v as usize]);
+    let sides: Vec<f64> = (0..4).map(|k| norm(sub(p[(k + 1) % 4], p[k]))).collect();
+    let smin = sides.iter().cloned().fold(f64::INFINITY, f64::min);
+    let smax = sides.iter().cloned().fold(0.0, f64::max);
+    let d1 = norm(sub(p[0], p[2]));
+    let d2 = norm(sub(p[1], p[3]));
+    if !(smin > 0.0 && d1.min(d2) > 0.0) {
+        return None;
+    }
+    let side_ratio = smax / smin;
+    let diagonal_ratio = d1.max(d2) / d1.min(d2);
+    Some((side_ratio.max(diagonal_ratio), Puncture { faces: [f0, f1], quad, side_ratio, diagonal_ratio, axis }))
 }
 
 fn third(f: [u32; 3], a: u32, b: u32) -> Option<u32> {
