@@ -448,6 +448,16 @@ fn mesh_hard_errors() {
             |e| matches!(e, MeshError::NonFiniteCoordinate { vertex: 1 }),
         ),
         (
+            "huge coordinates",
+            mesh(&[[0.0; 3], [1e200, 0.0, 0.0], [0.0, 1e200, 0.0]], &[[0, 1, 2]]),
+            |e| matches!(e, MeshError::ScaleOutOfRange { exponent: 200 }),
+        ),
+        (
+            "tiny coordinates",
+            mesh(&[[0.0; 3], [1e-200, 0.0, 0.0], [0.0, 1e-200, 0.0]], &[[0, 1, 2]]),
+            |e| matches!(e, MeshError::ScaleOutOfRange { exponent: -200 }),
+        ),
+        (
             "repeated index",
             mesh(&SQUARE, &[[0, 1, 2], [0, 2, 2]]),
             |e| {

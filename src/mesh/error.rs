@@ -45,6 +45,18 @@ pub enum MeshError {
         vertex: usize,
     },
 
+    /// The coordinates are too large or too small for double precision: squared lengths and
+    /// areas (the fourth power of the size) overflow or underflow.
+    #[error(
+        "the mesh's bounding box is about 1e{exponent} across, outside 1e-60..1e60: its squared \
+         lengths and areas overflow or underflow double precision; rescale the coordinates \
+         (e.g. to millimetres)"
+    )]
+    ScaleOutOfRange {
+        /// Base-10 exponent of the bounding box's largest side.
+        exponent: i32,
+    },
+
     /// A face uses the same vertex twice.
     #[error(
         "face {face} uses a vertex more than once (vertices {} {} {}); remove degenerate faces \

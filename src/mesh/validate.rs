@@ -68,16 +68,29 @@ pub struct MeshSummary {
     pub unreferenced_vertices: usize,
 }
 
-/// [`MeshError::NonFiniteCoordinate`] for the first vertex with a NaN or infinite coordinate.
+/// Largest bounding-box side accepted: its fourth power (squared areas) stays below
+/// `f64::MAX` (about 1.8e308) with room to spare. (The error message quotes the range.)
+pub const MAX_EXTENT: f64 = 1e60;
+
+/// Smallest non-zero bounding-box side accepted: its fourth power stays above the smallest
+/// normal `f64` (about 2.2e-308).
+pub const MIN_EXTENT: f64 = 1e-60;
+
+/// [`MeshError::NonFiniteCoordinate`] for the first vertex with a NaN or infinite coordinate,
+/// then [`MeshError::ScaleOutOfRange`] when the bounding box's largest side is outside
+/// [`MIN_EXTENT`]..[`MAX_EXTENT`] (a bunny scaled by 1e200 was refused as "not positive
+/// definite", by 1e-200 as having no interior edge: its lengths squared had overflowed or
+/// underflowed).
 pub fn check_finite(mesh: &TriMesh) -> Result<(), MeshError> {
-    match mesh
-        .vertices
-        .iter()
-        .position(|p| !p.iter().all(|x| x.is_finite()))
-    {
-        Some(vertex) => Err(MeshError::NonFiniteCoordinate { vertex }),
-        None => Ok(()),
+    if let Some(vertex) = mesh.vertices.iter().position(|p| !p.iter().all(|x| x.is_finite())) {
+        return Err(MeshError::NonFiniteCoordinate { vertex });
     }
+    // The largest side, not the diagonal: squaring the sides could overflow already.
+    let extent = mesh.bounding_box().map_or(0.0, |(lo, hi)| (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max));
+    if extent > MAX_EXTENT || (extent > 0.0 && extent < MIN_EXTENT) {
+        return Err(MeshError::ScaleOutOfRange { exponent: extent.log10().round() as i32 });
+    }
+    Ok(())
 }
 
 /// The kind of a single-component surface from its topology.
