@@ -166,18 +166,22 @@ fn poor_maps_are_reported_on_stderr() {
     assert!(!String::from_utf8_lossy(&good.stderr).contains("warning"), "{}", String::from_utf8_lossy(&good.stderr));
 }
 
+/// The bundled bunny changed by `change`, written to `name` in `dir`.
+fn bunny_variant(dir: &Path, name: &str, change: impl FnOnce(&mut capmesh::TriMesh)) -> PathBuf {
+    let mut mesh = capmesh::io::read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap();
+    change(&mut mesh);
+    let path = dir.join(name);
+    capmesh::io::write_mesh(&path, &mesh).unwrap();
+    path
+}
+
 /// A closed surface too elongated for the paper's lambda (the bunny stretched 10 times
 /// along its axis) is mapped with a larger one, and stderr says which and why;
 /// `--no-lambda-fallback` gives the transport's error instead, naming the remedy.
 #[test]
 fn elongated_closed_surfaces_fall_back_to_a_larger_lambda() {
     let dir = temp_dir("lambda_fallback");
-    let mut mesh = capmesh::io::read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap();
-    for p in &mut mesh.vertices {
-        p[0] *= 10.0;
-    }
-    let input = dir.join("bunny_x10.obj");
-    capmesh::io::write_mesh(&input, &mesh).unwrap();
+    let input = bunny_variant(&dir, "bunny_x10.obj", |mesh| mesh.vertices.iter_mut().for_each(|p| p[0] *= 10.0));
     let report = dir.join("report.json");
     let out = capmesh().args(["--quiet", "param"]).arg(&input).arg("-o").arg(dir.join("cap.obj")).arg("--report").arg(&report).output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
@@ -199,10 +203,9 @@ fn elongated_closed_surfaces_fall_back_to_a_larger_lambda() {
 #[test]
 fn zero_area_faces_in_a_remesh_are_reported() {
     let dir = temp_dir("zero_area");
-    let mut mesh = capmesh::io::read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap();
-    mesh.faces.remove(0);
-    let input = dir.join("bunny_hole.obj");
-    capmesh::io::write_mesh(&input, &mesh).unwrap();
+    let input = bunny_variant(&dir, "bunny_hole.obj", |mesh| {
+        mesh.faces.remove(0);
+    });
     let report = dir.join("report.json");
     let out = capmesh().args(["--quiet", "remesh"]).arg(&input).arg("-o").arg(dir.join("out.ply")).arg("--report").arg(&report).output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);

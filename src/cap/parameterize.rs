@@ -373,6 +373,8 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
     let mut best: Option<(f64, CapMap)> = None;
     let mut failure: Option<Error> = None;
     let mut attempt = options.clone();
+    // Whether the mesh is a closed surface, checked once, on the first fallback.
+    let closed = std::cell::OnceCell::new();
     loop {
         let lambda = attempt.closed.lambda;
         match parameterize_at_lambda(mesh, &attempt, progress) {
@@ -390,7 +392,7 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
             }
             Err(e) => return Err(e),
         }
-        match next_lambda(options, lambda).filter(|_| is_closed(mesh, options)) {
+        match next_lambda(options, lambda).filter(|_| *closed.get_or_init(|| is_closed(mesh, options))) {
             Some(next) => attempt.closed.lambda = next,
             None => {
                 return match (best, failure) {

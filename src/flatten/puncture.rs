@@ -161,14 +161,8 @@ pub fn choose_puncture(
     near.sort_by(|x, y| x.0.total_cmp(&y.0));
     let quad_at = |i: usize| quadrilateral(vertices, faces, edges[i], axis);
     let mut best: Option<(f64, Puncture)> = None;
-    for &(_, i) in near.iter() {
-        let Some((score, cand)) = quad_at(i) else { continue };
-        if score <= options.max_ratio {
-            return Some(cand);
-        }
-        if !best.as_ref().is_some_and(|(s, _)| *s <= score) {
-            best = Some((score, cand));
-        }
+    if let Some(p) = first_within(near.iter().map(|&(_, i)| quad_at(i)), options.max_ratio, &mut best) {
+        return Some(p);
     }
     if best.as_ref().is_some_and(|(s, _)| *s <= options.acceptable_ratio) {
         return best.map(|(_, p)| p);
@@ -177,16 +171,24 @@ pub fn choose_puncture(
     let reach = options.reach * (highest - lowest);
     let mut farther: Vec<(f64, usize)> = far.iter().copied().filter(|&(d, _)| d <= reach).collect();
     farther.sort_by(|x, y| x.0.total_cmp(&y.0));
-    for (_, i) in farther {
-        let Some((score, cand)) = quad_at(i) else { continue };
-        if score <= options.acceptable_ratio {
+    if let Some(p) = first_within(farther.into_iter().map(|(_, i)| quad_at(i)), options.acceptable_ratio, &mut best) {
+        return Some(p);
+    }
+    best.map(|(_, p)| p)
+}
+
+/// The first of the scored `candidates` whose score is at most `accept`; on the way, `best`
+/// keeps the lowest-scoring one seen (the earlier one on ties).
+fn first_within(candidates: impl Iterator<Item = Option<(f64, Puncture)>>, accept: f64, best: &mut Option<(f64, Puncture)>) -> Option<Puncture> {
+    for (score, cand) in candidates.flatten() {
+        if score <= accept {
             return Some(cand);
         }
         if !best.as_ref().is_some_and(|(s, _)| *s <= score) {
-            best = Some((score, cand));
+            *best = Some((score, cand));
         }
     }
-    best.map(|(_, p)| p)
+    None
 }
 
 /// The quadrilateral of the two faces at the interior edge `(a, b, f0, f1)` and its score,

@@ -102,10 +102,7 @@ pub struct RemeshReport {
 fn polygon_of(vertices: impl Iterator<Item = u32>, plane: &[[f64; 2]]) -> (Vec<[f64; 2]>, f64) {
     let points: Vec<[f64; 2]> = vertices.filter_map(|v| plane.get(v as usize).copied()).collect();
     let rim_radius = points.iter().map(|c| c[0].hypot(c[1])).fold(0.0, f64::max);
-    let mut corners: Vec<[f64; 2]> = points.into_iter().filter(|c| c[0].hypot(c[1]) >= (1.0 - RIM_TOLERANCE) * rim_radius).collect();
-    corners.sort_by(|a, b| a[1].atan2(a[0]).total_cmp(&b[1].atan2(b[0])));
-    corners.dedup();
-    (corners, rim_radius)
+    pullback::polygon_by_angle(points.into_iter().filter(|c| c[0].hypot(c[1]) >= (1.0 - RIM_TOLERANCE) * rim_radius).collect())
 }
 
 /// Relative distance below the rim's radius within which a boundary point counts as on it.

@@ -51,10 +51,7 @@ pub fn pull_back_closed_from(surface: &TriMesh, map: &CapMap, grid: &ClosedCapGr
         let bottom_faces: Vec<[u32; 3]> = bottom.iter().map(|&f| surface.faces[f]).collect();
         let flat: Vec<[f64; 2]> = map.cap.iter().map(|p| [p[0], p[1]]).collect();
         let locator = Locator::new(&flat, &bottom_faces);
-        let mut corners: Vec<[f64; 2]> = bottom_faces.iter().flatten().map(|&v| flat[v as usize]).collect();
-        corners.sort_by(|a, b| a[1].atan2(a[0]).total_cmp(&b[1].atan2(b[0])));
-        corners.dedup();
-        let rim_radius = corners.iter().map(|c| c[0].hypot(c[1])).fold(0.0, f64::max);
+        let (corners, rim_radius) = polygon_by_angle(bottom_faces.iter().flatten().map(|&v| flat[v as usize]).collect());
         for &x in &grid.mesh.vertices[split..] {
             let q = onto_polygon([x[0], x[1]], &corners, rim_radius);
             let loc = locator.locate(q)?;
@@ -83,6 +80,15 @@ fn onto_polygon(p: [f64; 2], corners: &[[f64; 2]], rim_radius: f64) -> [f64; 2] 
         }
         None => p,
     }
+}
+
+/// The `corners` of a polygon inscribed in a circle about the origin, ordered by angle
+/// (counter-clockwise) without repeats, and the radius of the farthest (the circle's).
+pub(crate) fn polygon_by_angle(mut corners: Vec<[f64; 2]>) -> (Vec<[f64; 2]>, f64) {
+    corners.sort_by(|a, b| a[1].atan2(a[0]).total_cmp(&b[1].atan2(b[0])));
+    corners.dedup();
+    let rim_radius = corners.iter().map(|c| c[0].hypot(c[1])).fold(0.0, f64::max);
+    (corners, rim_radius)
 }
 
 /// Whether the polygon `corners` (counter-clockwise by angle) has the origin strictly inside:
