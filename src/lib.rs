@@ -43,6 +43,7 @@ pub mod metrics;
 pub mod omt;
 #[cfg(feature = "openmesh")]
 pub mod openmesh;
+mod pool;
 pub mod progress;
 pub mod remesh;
 

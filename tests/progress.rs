@@ -41,3 +41,27 @@ fn break_cancels_the_parameterization() {
     // It stopped soon after the break, not at the end.
     assert!(calls.load(Ordering::SeqCst) <= 5);
 }
+
+/// The pipeline runs on rayon's pool (its short parallel loops split in place), but a
+/// front end's callback may only be safe on its own thread (MeshLab's drives a Qt progress
+/// bar): every report of a closed surface's map, whose two puncture ends search in
+/// parallel, and of a remesh arrives on the calling thread.
+#[test]
+fn reports_arrive_on_the_calling_thread() {
+    let caller = std::thread::current().id();
+    let elsewhere = AtomicUsize::new(0);
+    let calls = AtomicUsize::new(0);
+    let sink = |_: Stage, _: f64, _: &str| {
+        calls.fetch_add(1, Ordering::SeqCst);
+        if std::thread::current().id() != caller {
+            elsewhere.fetch_add(1, Ordering::SeqCst);
+        }
+        ControlFlow::Continue(())
+    };
+    let sphere = capmesh::mesh::shapes::icosphere(3);
+    parameterize(&sphere, &ParamOptions::default(), &sink).unwrap();
+    let cap = spherical_cap(0.3, 10, spherical_cap_sectors(0.3, 10));
+    capmesh::remesh::remesh(&cap, &capmesh::remesh::RemeshOptions::default(), &sink).unwrap();
+    assert!(calls.load(Ordering::SeqCst) > 10);
+    assert_eq!(elsewhere.load(Ordering::SeqCst), 0, "reports on another thread");
+}

@@ -365,7 +365,15 @@ impl CapMap {
 /// [`ParamOptions::closed_lambda_fallbacks`] (see [`super::lambda_fallback`]);
 /// [`ParamReport::lambda_fallbacks`] lists the attempts not kept, `report.flatten` the
 /// `lambda` used, and `report.seconds` then covers every attempt.
+///
+/// The work runs on a worker thread of rayon's pool; `progress` is called on this thread
+/// (see `crate::pool`).
 pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+    crate::pool::on_pool(progress, |progress| parameterize_with_fallbacks(mesh, options, progress))
+}
+
+/// [`parameterize`] on the current thread.
+fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
     options.domain.check().map_err(Error::InvalidOption)?;
     let start = Instant::now();
     // Every attempt not returned, the best poor map so far and the last transport failure.

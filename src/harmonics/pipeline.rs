@@ -120,10 +120,15 @@ pub struct HarmonicsOutput {
 /// `options.order`, reconstruct it and measure the errors and the aspect ratio.
 ///
 /// The order and the vertex count are checked before the (expensive) parameterization.
+///
+/// The work runs on a worker thread of rayon's pool; `progress` is called on this thread
+/// (see `crate::pool`).
 pub fn analyze(mesh: &TriMesh, options: &HarmonicsOptions, progress: &dyn Progress) -> Result<HarmonicsOutput, Error> {
     check_request(mesh, options.order)?;
-    let map = parameterize(mesh, &options.param, progress)?;
-    analyze_map(mesh, &map, options.order, progress)
+    crate::pool::on_pool(progress, |progress| {
+        let map = parameterize(mesh, &options.param, progress)?;
+        analyze_map(mesh, &map, options.order, progress)
+    })
 }
 
 /// As [`analyze`], from the parameterization `map` of `mesh` (its `cap` holds one position per

@@ -111,7 +111,15 @@ const RIM_TOLERANCE: f64 = 1e-6;
 /// Remesh a surface through its adaptive cap: an open disk gives an open disk, a closed
 /// genus-0 surface a closed genus-0 mesh (the cap grid closed by a flat bottom disk that is
 /// pulled back onto the punctured quad).
+///
+/// The work runs on a worker thread of rayon's pool; `progress` is called on this thread
+/// (see `crate::pool`).
 pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport), Error> {
+    crate::pool::on_pool(progress, |progress| remesh_here(mesh, options, progress))
+}
+
+/// [`remesh`] on the current thread.
+fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport), Error> {
     let start = Instant::now();
     // Refused before the parameterization, which would be wasted.
     let asked = options.grid.approximate_faces();
