@@ -161,8 +161,9 @@ type AnalysedPattern = (Vec<usize>, Vec<usize>, SymbolicCholesky<usize>);
 /// an idle second core: transport 1.25-1.26 s sequential, 1.55-1.63 s parallel, the same map
 /// to the bit; and once more with the whole pipeline on a worker thread (`crate::pool`), so
 /// that faer's tasks are split in place: 164k ellipsoid flattening, both puncture ends at
-/// once, 2.98 -> 3.24 s, medians of three alternating runs). Parallelism lives one level up, over independent work, and over the
-/// right-hand sides of large systems (from 20 000 unknowns).
+/// once, 2.98 -> 3.24 s, medians of three alternating runs). Parallelism lives one level
+/// up, over independent work, and over the right-hand sides of large systems (from 20 000
+/// unknowns).
 ///
 /// Clones share the symbolic factorization: [`SpdSolver::analyze`] once, then clone for
 /// parallel numeric factorizations of matrices with that pattern.
