@@ -299,3 +299,27 @@ fn remesh_takes_the_parameterization_options() {
     let err = String::from_utf8_lossy(&bad.stderr);
     assert!(err.contains("lambda") && err.contains("closed_bunny_npm"), "{err}");
 }
+
+/// `--threads` sets the worker threads, and the remeshes do not depend on them: a closed
+/// surface (both puncture ends searched in parallel) and an open one remesh to the same
+/// bytes on one, two and three threads. `--threads 0` is refused by name.
+#[test]
+fn results_do_not_depend_on_the_number_of_threads() {
+    let dir = temp_dir("threads");
+    for name in ["closed_bunny_npm.obj.gz", "open_lv_endo_rabbit_chaste.obj.gz"] {
+        let outputs: Vec<Vec<u8>> = ["1", "2", "3"]
+            .iter()
+            .map(|threads| {
+                let out = dir.join(format!("{threads}-{name}.ply"));
+                let run = capmesh().args(["--threads", threads, "remesh", "--quiet"]).arg(data(name)).arg("-o").arg(&out).output().unwrap();
+                assert!(run.status.success(), "{name} on {threads} threads: {}", String::from_utf8_lossy(&run.stderr));
+                std::fs::read(&out).unwrap()
+            })
+            .collect();
+        assert!(!outputs[0].is_empty());
+        assert!(outputs.iter().all(|o| o == &outputs[0]), "{name}: the remesh depends on the number of threads");
+    }
+    let refused = capmesh().args(["--threads", "0", "check"]).arg(data("closed_bunny_npm.obj.gz")).output().unwrap();
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--threads"), "{}", String::from_utf8_lossy(&refused.stderr));
+}

@@ -31,6 +31,10 @@ struct Cli {
     /// No progress bar.
     #[arg(long, global = true)]
     quiet: bool,
+    /// Worker threads (default: one per core, or RAYON_NUM_THREADS). `param` and `remesh`
+    /// write the same bytes on any number of threads.
+    #[arg(long, global = true, value_parser = clap::value_parser!(u16).range(1..))]
+    threads: Option<u16>,
 }
 
 #[derive(Subcommand)]
@@ -128,7 +132,7 @@ enum Command {
         /// Output CSV file.
         #[arg(long)]
         csv: PathBuf,
-        /// Meshes analysed at once (default: one per core).
+        /// Meshes analysed at once (default: one per worker thread, see --threads).
         #[arg(long)]
         jobs: Option<usize>,
         /// Domain: adaptive (default), hemisphere, sphere or radius=R.
@@ -150,6 +154,12 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Some(n) = cli.threads {
+        if let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(usize::from(n)).build_global() {
+            eprintln!("error: cannot start {n} worker threads: {e}");
+            return ExitCode::FAILURE;
+        }
+    }
     // The whole command on a worker thread of rayon's pool, so that the parallel loops of the
     // reading, the metrics and the writing are split in place too (the library's entry
     // points do this for the pipeline itself, see `capmesh::pool`): MEG helmet remesh 0.153

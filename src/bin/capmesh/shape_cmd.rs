@@ -45,11 +45,9 @@ pub fn run(args: ShapeArgs) -> Result<(), String> {
             return Err(format!("refusing to overwrite the input file {}; choose another CSV path", f.display()));
         }
     }
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(j) = args.jobs {
-        pool = pool.num_threads(j.max(1));
-    }
-    let pool = pool.build().map_err(|e| format!("cannot start worker threads: {e}"))?;
+    // `--jobs`, else as many as the global pool's threads (`--threads`).
+    let jobs = args.jobs.unwrap_or_else(rayon::current_num_threads).max(1);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build().map_err(|e| format!("cannot start worker threads: {e}"))?;
     let bar = counter(files.len(), args.quiet);
     let options = HarmonicsOptions {
         order: 1,
