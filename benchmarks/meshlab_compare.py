@@ -3,8 +3,9 @@
 
 For each bundled open mesh, at about 5000 faces: capmesh's uniform cap remesh, and MeshLab's
 uniform mesh resampling, RIMLS (marching cubes), screened Poisson and isotropic explicit
-remeshing through pymeshlab. Every output is scored by the same code (`capmesh metrics`), and
-the table and plots go to benchmarks/results/. Run through benchmarks/meshlab_compare.sh.
+remeshing through pymeshlab. Every method runs three times on every mesh, the methods
+alternating (median time reported); every output is scored by the same code (`capmesh
+metrics`), and the table and plots go to benchmarks/results/. Run through benchmarks/meshlab_compare.sh.
 
 Open inputs: uniform resampling, RIMLS and screened Poisson build closed implicit surfaces; we
 trim their faces farther than 1% of the bounding-box diagonal from the input (the usual
@@ -19,6 +20,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import statistics
 import time
 
 import pymeshlab as ml
@@ -28,6 +30,10 @@ DATA = os.path.join(ROOT, "tests", "data")
 RESULTS = os.path.join(ROOT, "benchmarks", "results")
 CAPMESH = os.path.join(ROOT, "target", "release", "capmesh")
 TARGET = 5000
+# Timed runs of every method on every mesh (medians reported).
+REPEATS = 3
+OURS = "capmesh (adaptive cap)"
+MESHLAB_METHODS = ["uniform mesh resampling", "RIMLS", "screened Poisson", "isotropic explicit remeshing"]
 MESHES = [
     "open_face_choi",
     "open_hippocampus_sheet_hippunfold",
@@ -118,19 +124,26 @@ def main():
         with gzip.open(os.path.join(DATA, name + ".obj.gz"), "rb") as src, open(obj, "wb") as dst:
             dst.write(src.read())
         ours = os.path.join(work, name + ".capmesh.ply")
-        t0 = time.perf_counter()
-        proc = subprocess.run([CAPMESH, "remesh", "--quiet", obj, "-o", ours, "--faces", str(TARGET)], capture_output=True, text=True)
-        t_ours = time.perf_counter() - t0
-        results = [("capmesh (adaptive cap)", ours if proc.returncode == 0 else None, t_ours, proc.stderr.strip())]
-        for method in ["uniform mesh resampling", "RIMLS", "screened Poisson", "isotropic explicit remeshing"]:
-            try:
-                path, secs = run_meshlab(method, obj)
-                results.append((method, path, secs, ""))
-            except Exception as e:  # a failing method is reported, not hidden
-                results.append((method, None, 0.0, str(e)))
-        for method, path, secs, err in results:
+        # Every method REPEATS times, the methods alternating within each round so that the
+        # machine's drift affects them alike; the median time is reported, the output (the
+        # same every round: all methods are deterministic) scored once.
+        runs = {}
+        for _ in range(REPEATS):
+            t0 = time.perf_counter()
+            proc = subprocess.run([CAPMESH, "remesh", "--quiet", obj, "-o", ours, "--faces", str(TARGET)], capture_output=True, text=True)
+            runs.setdefault(OURS, []).append((ours if proc.returncode == 0 else None, time.perf_counter() - t0, proc.stderr.strip()))
+            for method in MESHLAB_METHODS:
+                try:
+                    path, secs = run_meshlab(method, obj)
+                    runs.setdefault(method, []).append((path, secs, ""))
+                except Exception as e:  # a failing method is reported, not hidden
+                    runs.setdefault(method, []).append((None, 0.0, str(e)))
+        for method in [OURS] + MESHLAB_METHODS:
+            path, _, err = runs[method][-1]
+            times = [t for _, t, _ in runs[method]]
+            secs = statistics.median(times)
             m = metrics(obj, path) if path else None
-            rows.append({"mesh": name, "method": method, "seconds": secs, "metrics": m, "error": err if not m else ""})
+            rows.append({"mesh": name, "method": method, "seconds": secs, "seconds_runs": times, "metrics": m, "error": err if not m else ""})
             print(name, method, f"{secs:.2f}s", "failed: " + err if not m else f"faces {m['faces']} d_face_rel {m['d_face_relative']:.4f} d_surf_sampled_rel {m['d_surface_sampled_relative']:.2e}", flush=True)
     with open(os.path.join(RESULTS, "meshlab_compare.json"), "w") as f:
         json.dump(rows, f, indent=1)
@@ -141,7 +154,8 @@ def write_report(rows):
     lines = [
         "# Remeshing: capmesh vs MeshLab (about 5000 faces)",
         "",
-        f"Machine: {os.cpu_count()} cores; pymeshlab {ml.__version__ if hasattr(ml, '__version__') else '2025.7.post1'}; one run each.",
+        f"Machine: {os.cpu_count()} cores; pymeshlab {ml.__version__ if hasattr(ml, '__version__') else '2025.7.post1'}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())};",
+        f"seconds: median of {REPEATS} runs, the methods alternating within each round (every run's time in meshlab_compare.json).",
         "All outputs scored by `capmesh metrics` against the input. d_face_rel = mean |area - mean| / mean area;",
         "d_surf = symmetric face-sampled distance / bounding-box diagonal; seconds exclude file I/O for MeshLab",
         "and include the whole CLI run (parameterization, remeshing, metrics) for capmesh.",
