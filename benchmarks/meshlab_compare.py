@@ -3,9 +3,10 @@
 
 For each bundled open mesh, at about 5000 faces: capmesh's uniform cap remesh, and MeshLab's
 uniform mesh resampling, RIMLS (marching cubes), screened Poisson and isotropic explicit
-remeshing through pymeshlab. Every method runs three times on every mesh, the methods
+remeshing through pymeshlab. Every method runs REPEATS times on every mesh, the methods
 alternating (median time reported); every output is scored by the same code (`capmesh
-metrics`), and the table and plots go to benchmarks/results/. Run through benchmarks/meshlab_compare.sh.
+metrics`), and the table and plots go to benchmarks/results/. Run through
+benchmarks/meshlab_compare.sh.
 
 Open inputs: uniform resampling, RIMLS and screened Poisson build closed implicit surfaces; we
 trim their faces farther than 1% of the bounding-box diagonal from the input (the usual
@@ -17,10 +18,10 @@ import gzip
 import json
 import math
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
-import statistics
 import time
 
 import pymeshlab as ml
@@ -139,9 +140,11 @@ def main():
                 except Exception as e:  # a failing method is reported, not hidden
                     runs.setdefault(method, []).append((None, 0.0, str(e)))
         for method in [OURS] + MESHLAB_METHODS:
-            path, _, err = runs[method][-1]
-            times = [t for _, t, _ in runs[method]]
-            secs = statistics.median(times)
+            # A method that failed in any round is reported with that round's error.
+            failed = [r for r in runs[method] if r[0] is None]
+            path, _, err = failed[0] if failed else runs[method][-1]
+            times = [t for p, t, _ in runs[method] if p is not None]
+            secs = statistics.median(times) if times else 0.0
             m = metrics(obj, path) if path else None
             rows.append({"mesh": name, "method": method, "seconds": secs, "seconds_runs": times, "metrics": m, "error": err if not m else ""})
             print(name, method, f"{secs:.2f}s", "failed: " + err if not m else f"faces {m['faces']} d_face_rel {m['d_face_relative']:.4f} d_surf_sampled_rel {m['d_surface_sampled_relative']:.2e}", flush=True)
