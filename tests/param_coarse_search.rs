@@ -10,6 +10,11 @@ fn data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
 }
 
+/// Open surfaces' full-resolution search takes a dozen solves; the coarse one must do with
+/// under half their Newton iterations. A closed surface's search starts at its bound and ends
+/// after two solves (`brent::minimize_from_lower_bound`), so at full resolution it costs two
+/// solves to the search's tolerance against one to the final map's after a coarse search:
+/// there the coarse search must still save at least a quarter of them.
 fn compare(name: &str, z_tolerance: f64) {
     let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
     let full_options = ParamOptions { search_sites: 0, ..ParamOptions::default() };
@@ -34,7 +39,9 @@ fn compare(name: &str, z_tolerance: f64) {
     let sites = coarse.search_sites.unwrap_or_else(|| panic!("{name}: no coarse search"));
     assert!(sites <= capmesh::cap::parameterize::DEFAULT_SEARCH_SITES && 2 * sites < mesh.n_vertices());
     assert_eq!(coarse.transport_solves, 1, "{name}: only r* is solved at full resolution");
-    assert!(2 * coarse.newton_iterations < full.newton_iterations, "{name}: {} vs {}", coarse.newton_iterations, full.newton_iterations);
+    let closed = name.starts_with("closed_");
+    let most = if closed { 0.75 } else { 0.5 };
+    assert!((coarse.newton_iterations as f64) < most * full.newton_iterations as f64, "{name}: {} vs {}", coarse.newton_iterations, full.newton_iterations);
     assert!((coarse.z_star.unwrap() - full.z_star.unwrap()).abs() < z_tolerance, "{name}: Z*");
     assert_eq!(coarse.flipped_faces, 0);
     assert!(coarse.angle_distortion.mean_abs < 1.02 * full.angle_distortion.mean_abs, "{name}: d_angle");

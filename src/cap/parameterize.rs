@@ -566,7 +566,7 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, rank_ends: b
             // lower bound (the cap becomes the whole sphere but for the punctured quad), and
             // golden steps towards it shrink the distance geometrically in r rather than in
             // Z*: 10 solves instead of 17 on the shared meshes, with the tolerance kept on Z*
-            // (dZ*/dw = 1 - Z*^2). Open surfaces search over Z* itself, as the paper's
+            // (dZ*/dw = 1 - Z*^2); started at the bound, 2. Open surfaces search over Z* itself, as the paper's
             // fminbnd: their objective can have several local minima (hippocampal sheet:
             // 0.2965 at Z* = 0.126, 0.3191 at 0.725), and the other variable's first
             // evaluations land in the worse basin there.
@@ -603,8 +603,9 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, rank_ends: b
             let z_tolerance = options.z_tolerance;
             if in_atanh {
                 // Their energy falls all the way to the bound on every shared closed mesh:
-                // the bound probe saves 8-10 of their 42-54 search iterations.
-                brent::minimize_with_tolerance(&mut objective, z_lo.atanh(), z_hi.atanh(), |w: f64| z_tolerance * w.cosh().powi(2), max_evals, true)?;
+                // the search starts there and ends after two solves when the energy rises
+                // inwards (`brent::minimize_from_lower_bound`).
+                brent::minimize_from_lower_bound(&mut objective, z_lo.atanh(), z_hi.atanh(), |w: f64| z_tolerance * w.cosh().powi(2), max_evals)?;
             } else {
                 brent::minimize(&mut objective, z_lo, z_hi, z_tolerance, max_evals)?;
             }
