@@ -121,7 +121,7 @@ pub fn minimize_with_tolerance<E>(
 /// evaluations are spent and [`minimize_with_tolerance`] runs with the probe as before.
 /// The closed surfaces' energy falls all the way to the bound on every mesh measured, and
 /// the approach cost 5 of their 7 transport solves, the first of them cold (see
-/// [`crate::cap::parameterize`]).
+/// [`crate::cap::parameterize()`]).
 pub fn minimize_from_lower_bound<E>(
     mut f: impl FnMut(f64) -> Result<f64, E>,
     lower: f64,

@@ -566,8 +566,8 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, rank_ends: b
             // lower bound (the cap becomes the whole sphere but for the punctured quad), and
             // golden steps towards it shrink the distance geometrically in r rather than in
             // Z*: 10 solves instead of 17 on the shared meshes, with the tolerance kept on Z*
-            // (dZ*/dw = 1 - Z*^2); started at the bound, 2. Open surfaces search over Z* itself, as the paper's
-            // fminbnd: their objective can have several local minima (hippocampal sheet:
+            // (dZ*/dw = 1 - Z*^2); started at the bound, 2. Open surfaces search over Z*
+            // itself, as the paper's fminbnd: their objective can have several local minima (hippocampal sheet:
             // 0.2965 at Z* = 0.126, 0.3191 at 0.725), and the other variable's first
             // evaluations land in the worse basin there.
             let in_atanh = kind == SurfaceKind::ClosedSphere;
