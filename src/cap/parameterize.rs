@@ -567,9 +567,9 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, rank_ends: b
             // golden steps towards it shrink the distance geometrically in r rather than in
             // Z*: 10 solves instead of 17 on the shared meshes, with the tolerance kept on Z*
             // (dZ*/dw = 1 - Z*^2); started at the bound, 2. Open surfaces search over Z*
-            // itself, as the paper's fminbnd: their objective can have several local minima (hippocampal sheet:
-            // 0.2965 at Z* = 0.126, 0.3191 at 0.725), and the other variable's first
-            // evaluations land in the worse basin there.
+            // itself, as the paper's fminbnd: their objective can have several local minima
+            // (hippocampal sheet: 0.2965 at Z* = 0.126, 0.3191 at 0.725), and the other
+            // variable's first evaluations land in the worse basin there.
             let in_atanh = kind == SurfaceKind::ClosedSphere;
             let to_z = |w: f64| if in_atanh { w.tanh() } else { w };
             let mut objective = |w: f64| -> Result<f64, Error> {
