@@ -1,10 +1,15 @@
 //! Very elongated closed surfaces (`cap::lambda_fallback`): the shared bunny stretched along
 //! its principal axis. At the paper's `lambda = 0.2` its initial map squeezes the far end
-//! below double precision and the transport stalls (10 times), or the map comes out far from
-//! area preserving (50 times); the parameterization then maps it again with a larger
-//! `lambda`, keeps a fold-free map within the poor-map threshold and says what it tried. The
-//! unstretched bunny keeps `lambda = 0.2` with nothing tried, and without fallbacks the
-//! stalled transport is the error.
+//! below double precision and the transport stalls (10 and 50 times), and at `lambda = 0.5`
+//! the 50 times stretched one comes out far from area preserving; the parameterization maps
+//! it again with a larger `lambda`, keeps a fold-free map within the poor-map threshold and
+//! says what it tried. The unstretched bunny keeps `lambda = 0.2` with nothing tried, and
+//! without fallbacks the stalled transport is the error.
+//!
+//! (Before the closed surfaces' radius search started at its bound, the 50 times stretched
+//! bunny's search found an interior minimum of the energy, `r = 8.2`, where `lambda = 0.2`
+//! gave a poor map instead of a stalled one; from the bound it finds the lower energy there,
+//! 0.9114 against 0.9211, and ends with mean |d_area| 0.137 instead of 0.170.)
 
 use capmesh::cap::lambda_fallback::POOR_MAP_AREA_DISTORTION;
 use capmesh::cap::parameterize::FlattenReport;
@@ -75,7 +80,7 @@ fn a_stalled_transport_is_retried_with_a_larger_lambda() {
 fn a_poor_map_is_replaced_by_a_better_one() {
     let map = parameterize(&stretched_bunny(50.0), &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("bunny x50: {e}"));
     check_rescued(&map, "bunny x50");
-    let poor = &map.report.lambda_fallbacks[0];
-    let d = poor.mean_abs_area_distortion.expect("lambda 0.2 gave a map");
+    let poor = map.report.lambda_fallbacks.iter().find(|f| f.mean_abs_area_distortion.is_some()).expect("a lambda gave a map");
+    let d = poor.mean_abs_area_distortion.expect("a map");
     assert!(d > POOR_MAP_AREA_DISTORTION && d > 2.0 * map.report.area_distortion.mean_abs, "{poor:?}");
 }
