@@ -45,7 +45,7 @@ pub fn minimize_with_tolerance<E>(
     while evals < max_evals {
         let x = s.x;
         let xm = 0.5 * (s.a + s.b);
-        let tol1 = 1e-10 * x.abs() + xtol(x) / 3.0;
+        let tol1 = step_tolerance(x, &xtol);
         let tol2 = 2.0 * tol1;
         if (x - xm).abs() <= tol2 - 0.5 * (s.b - s.a) {
             break;
@@ -53,7 +53,7 @@ pub fn minimize_with_tolerance<E>(
         if bound_probe && !probed && streak >= 2 && evals + 2 <= max_evals {
             let bound = if towards < 0 { lower } else { upper };
             let still_bracketed = if towards < 0 { s.a == lower } else { s.b == upper };
-            let t = 1e-10 * bound.abs() + xtol(bound) / 3.0;
+            let t = step_tolerance(bound, &xtol);
             let inward = if towards < 0 { 1.0 } else { -1.0 };
             let creeping = streak >= 3 || !s.predicts_minimum_away_from(bound, 2.0 * t);
             if still_bracketed && creeping && (x - bound).abs() > 2.0 * t {
@@ -113,6 +113,12 @@ pub fn minimize_with_tolerance<E>(
     Ok((s.x, s.fx))
 }
 
+/// Brent's smallest step at `x` (his `tol1`: a relative `1e-10` and a third of the
+/// tolerance there); the bound probe's points are one and two of them inside the bound.
+fn step_tolerance(x: f64, xtol: &impl Fn(f64) -> f64) -> f64 {
+    1e-10 * x.abs() + xtol(x) / 3.0
+}
+
 /// The closed surfaces' radius search (ours): Brent's method with the bound probe, but the
 /// probe taken first. The points one and two tolerances inside the `lower` bound are
 /// evaluated before anything else; when the first is no worse than the second, the search
@@ -130,7 +136,7 @@ pub fn minimize_from_lower_bound<E>(
     max_evals: usize,
 ) -> Result<(f64, f64), E> {
     let (lower, upper) = (lower.min(upper), lower.max(upper));
-    let t = 1e-10 * lower.abs() + xtol(lower) / 3.0;
+    let t = step_tolerance(lower, &xtol);
     if max_evals >= 2 && upper - lower > 4.0 * t {
         let (u1, u2) = (lower + t, lower + 2.0 * t);
         let f1 = f(u1)?;
