@@ -166,5 +166,5 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         }
         g => return Err(Failure::invalid_argument(format!("grid = {g} is not 0 (uniform) or 1 (lat-long)"))),
     };
-    Ok(RemeshOptions { grid, param: param_options(&o.param)?, area_equalization: o.area_equalization as usize })
+    Ok(RemeshOptions { grid, param: param_options(&o.param)?, area_equalization: o.area_equalization as usize, ..Default::default() })
 }

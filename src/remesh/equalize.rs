@@ -13,36 +13,33 @@
 
 use super::locate::Locator;
 use crate::cap::area_refine::{refine_towards, AreaRefineReport, RefineOptions};
-use crate::mesh::geometry::triangle_area;
 use crate::mesh::TriMesh;
 use std::sync::atomic::{AtomicU32, Ordering};
 
-/// Equalize the areas of `out` (the cap mesh `cap` pulled back onto `surface` from the planar
-/// points `start`, one per cap vertex; positions updated in place) towards the cap's face
-/// areas. `surface_faces` are the faces of `surface` that the plane map `plane` covers;
-/// vertices of `cap` from `first_fixed` on do not move.
+/// Equalize the areas of `out` (the remesh `faces` pulled back onto `surface` from the planar
+/// points `plane`, one per vertex; both updated in place) towards areas proportional to
+/// `target`. `surface_faces` are the faces of `surface` that the plane map `surface_plane`
+/// covers; vertices flagged in `fixed` do not move.
 #[allow(clippy::too_many_arguments)]
 pub fn equalize_areas(
     surface: &TriMesh,
     surface_faces: &[[u32; 3]],
-    plane: &[[f64; 2]],
-    cap: &TriMesh,
-    start: Vec<[f64; 2]>,
-    first_fixed: usize,
+    surface_plane: &[[f64; 2]],
+    faces: &[[u32; 3]],
+    target: &[f64],
+    fixed: &[bool],
+    plane: &mut [[f64; 2]],
     out: &mut [[f64; 3]],
     sweeps: usize,
 ) -> AreaRefineReport {
     if sweeps == 0 {
         return AreaRefineReport::default();
     }
-    let locator = Locator::new(plane, surface_faces);
+    let locator = Locator::new(surface_plane, surface_faces);
     // The refinement lifts a vertex's points near its last one (its position's
     // finite-difference neighbours, its trial steps, the next sweep's): each vertex's
-    // queries try the triangle of its last query first. Before (2026-12-01), one hint per
-    // thread, whose first query for each vertex missed (the previous vertex of a colour
-    // class is elsewhere): MEG helmet equalization 24.3 -> 20.5 ms, bunny 24.8 -> 18.3 ms,
-    // hand 65 -> 60 ms (medians of six alternating runs; the same remeshes byte for byte).
-    let last_face: Vec<AtomicU32> = (0..cap.vertices.len()).map(|_| AtomicU32::new(u32::MAX)).collect();
+    // queries try the triangle of its last query first.
+    let last_face: Vec<AtomicU32> = (0..plane.len()).map(|_| AtomicU32::new(u32::MAX)).collect();
     let lift = |v: usize, q: [f64; 2]| -> [f64; 3] {
         let hint = last_face.get(v).map(|h| h.load(Ordering::Relaxed)).filter(|&h| h != u32::MAX).map(|h| h as usize);
         let found = locator.locate_near(q, hint);
@@ -58,8 +55,5 @@ pub fn equalize_areas(
             None => [f64::NAN; 3],
         }
     };
-    let mut q = start;
-    let target: Vec<f64> = cap.faces.iter().map(|f| triangle_area(cap.vertices[f[0] as usize], cap.vertices[f[1] as usize], cap.vertices[f[2] as usize])).collect();
-    let fixed: Vec<bool> = (0..cap.vertices.len()).map(|v| v >= first_fixed).collect();
-    refine_towards(&mut q, out, &target, &cap.faces, &fixed, &lift, RefineOptions::plain(sweeps))
+    refine_towards(plane, out, target, faces, fixed, &lift, RefineOptions::plain(sweeps))
 }

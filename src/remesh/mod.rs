@@ -5,6 +5,7 @@ pub mod equalize;
 pub mod grid;
 pub mod locate;
 pub mod pullback;
+pub mod shape;
 
 use crate::cap::area_refine::AreaRefineReport;
 use crate::cap::{parameterize, ParamOptions, ParamReport};
@@ -55,6 +56,45 @@ impl CapGrid {
     }
 }
 
+/// What is optimised after the pull-back.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub enum Optimize {
+    /// Shape (flips and tangential relaxation on the surface, [`shape`]) then the area
+    /// equalization: isotropic triangles of near-equal area. The default.
+    #[default]
+    #[serde(rename = "shape+area")]
+    ShapeAndArea,
+    /// The area equalization alone: the cap grid's connectivity, near-equal areas.
+    #[serde(rename = "area")]
+    Area,
+    /// The paper's plain pull-back (Sec. 4.2).
+    #[serde(rename = "none")]
+    None,
+}
+
+impl Optimize {
+    /// The name used by the CLI and the JSON report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Optimize::ShapeAndArea => "shape+area",
+            Optimize::Area => "area",
+            Optimize::None => "none",
+        }
+    }
+}
+
+impl std::str::FromStr for Optimize {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "shape+area" => Ok(Optimize::ShapeAndArea),
+            "area" => Ok(Optimize::Area),
+            "none" => Ok(Optimize::None),
+            _ => Err(format!("unknown optimisation {s:?}: use shape+area (default), area or none")),
+        }
+    }
+}
+
 /// Options of [`remesh`].
 #[derive(Debug, Clone)]
 pub struct RemeshOptions {
@@ -62,9 +102,16 @@ pub struct RemeshOptions {
     pub grid: CapGrid,
     /// Parameterization options (adaptive cap by default).
     pub param: ParamOptions,
-    /// Sweeps of the area equalization of the pulled-back mesh (see [`equalize`]); 0 pulls
+    /// Sweeps of the area equalization of the pulled-back mesh with [`Optimize::Area`] (see
+    /// [`equalize`]; after the shape stage, [`shape::ShapeOptions::area_sweeps`]); 0 pulls
     /// the cap mesh back as the paper does. Default [`DEFAULT_AREA_EQUALIZATION`].
     pub area_equalization: usize,
+    /// What is optimised after the pull-back. Default [`Optimize::ShapeAndArea`]; the
+    /// latitude/longitude grid keeps its grid lines (its purpose) and gets the area
+    /// equalization only.
+    pub optimize: Optimize,
+    /// The shape stage's options.
+    pub shape: shape::ShapeOptions,
 }
 
 /// Sweeps of the area equalization by default.
@@ -72,7 +119,13 @@ pub const DEFAULT_AREA_EQUALIZATION: usize = 30;
 
 impl Default for RemeshOptions {
     fn default() -> Self {
-        Self { grid: CapGrid::default(), param: ParamOptions::default(), area_equalization: DEFAULT_AREA_EQUALIZATION }
+        Self {
+            grid: CapGrid::default(),
+            param: ParamOptions::default(),
+            area_equalization: DEFAULT_AREA_EQUALIZATION,
+            optimize: Optimize::default(),
+            shape: shape::ShapeOptions::default(),
+        }
     }
 }
 
@@ -81,6 +134,10 @@ impl Default for RemeshOptions {
 pub struct RemeshReport {
     /// The parameterization.
     pub param: ParamReport,
+    /// What was optimised after the pull-back.
+    pub optimize: Optimize,
+    /// The shape stage (all zero when it did not run).
+    pub shape: shape::ShapeReport,
     /// The area equalization of the pulled-back mesh.
     pub area_equalization: AreaRefineReport,
     /// Quality of the result against the input.
@@ -89,6 +146,8 @@ pub struct RemeshReport {
     pub seconds: f64,
     /// Seconds spent building the cap grid and pulling it back.
     pub pullback_seconds: f64,
+    /// Seconds spent in the shape stage.
+    pub shape_seconds: f64,
     /// Seconds spent in the area equalization.
     pub equalize_seconds: f64,
     /// Seconds spent measuring the result ([`RemeshReport::quality`]).
@@ -144,7 +203,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     // the equalization moves it. The planar map covers the polygon of its boundary (an open
     // surface's boundary, a closed one's punctured quad), inscribed in the rim: cap points
     // near the rim are moved inside it ([`pullback::rim_band_into_polygon`]).
-    let (grid_mesh, planar, mut positions) = if closed {
+    let (grid_mesh, planar, mut positions, in_plane) = if closed {
         let grid = grid::close_bottom(cap);
         let split = grid.first_bottom_vertex.min(grid.mesh.vertices.len());
         let mut planar: Vec<[f64; 2]> = grid.mesh.vertices.iter().map(|&x| stereographic(x)).collect();
@@ -152,30 +211,68 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         let (corners, rim_radius) = polygon_of(quad.into_iter(), &map.plane);
         pullback::rim_band_into_polygon(&mut planar[..split], &corners, rim_radius);
         let positions = pullback::pull_back_closed_from(mesh, &map, &grid, &planar[..split]).ok_or_else(no_face)?;
-        (grid.mesh, planar, positions)
+        (grid.mesh, planar, positions, split)
     } else {
         let mut planar: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
         let boundary = is_boundary_vertex(mesh);
         let (corners, rim_radius) = polygon_of((0..mesh.n_vertices() as u32).filter(|&v| boundary[v as usize]), &map.plane);
         pullback::rim_band_into_polygon(&mut planar, &corners, rim_radius);
         let positions = pullback::pull_back_planar(mesh, &map.plane, &planar).ok_or_else(no_face)?;
-        (cap, planar, positions)
+        let n = cap.vertices.len();
+        (cap, planar, positions, n)
     };
     let pullback_seconds = t_pull.elapsed().as_secs_f64();
+    let n = grid_mesh.vertices.len();
+    let mut fixed: Vec<bool> = (0..n).map(|v| v >= first_fixed).collect();
+    let mut planar = planar;
+    let mut faces = grid_mesh.faces;
+    let shaped = options.optimize == Optimize::ShapeAndArea && matches!(options.grid, CapGrid::Uniform { .. });
+    let t_shape = Instant::now();
+    let mut shape_report = shape::ShapeReport::default();
+    if shaped {
+        progress::check(progress, Stage::Remesh, 0.3, "shaping the triangles")?;
+        let lift = shape::state::SurfaceLift::new(mesh, &map.plane, &top_faces);
+        let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &is_boundary_vertex(mesh)) };
+        let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), in_plane, fixed: &fixed };
+        let (new_faces, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
+        faces = new_faces;
+        shape_report = report;
+        // Boundary vertices slid; the equalization keeps them where they are.
+        let boundary = crate::mesh::topology::is_boundary_vertex(&TriMesh::new(positions.clone(), faces.clone()));
+        for v in 0..n {
+            fixed[v] = fixed[v] || boundary[v];
+        }
+    }
+    let shape_seconds = t_shape.elapsed().as_secs_f64();
     progress::check(progress, Stage::Remesh, 0.5, "equalizing the areas")?;
     let t_eq = Instant::now();
-    let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &grid_mesh, planar, first_fixed, &mut positions, options.area_equalization);
+    let sweeps = match options.optimize {
+        Optimize::None => 0,
+        _ if shaped => options.shape.area_sweeps,
+        _ => options.area_equalization,
+    };
+    // Targets: the cap triangles' areas while the cap grid's connectivity is kept; equal
+    // areas once the shape stage has changed it.
+    let target: Vec<f64> = if shaped {
+        vec![1.0; faces.len()]
+    } else {
+        faces.iter().map(|f| crate::mesh::geometry::triangle_area(grid_mesh.vertices[f[0] as usize], grid_mesh.vertices[f[1] as usize], grid_mesh.vertices[f[2] as usize])).collect()
+    };
+    let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &faces, &target, &fixed, &mut planar, &mut positions, sweeps);
     let equalize_seconds = t_eq.elapsed().as_secs_f64();
-    let out = TriMesh::new(positions, grid_mesh.faces);
+    let out = TriMesh::new(positions, faces);
     let t_metrics = Instant::now();
     let quality = remesh_metrics(mesh, &out);
     let metrics_seconds = t_metrics.elapsed().as_secs_f64();
     let report = RemeshReport {
         param: map.report,
+        optimize: options.optimize,
+        shape: shape_report,
         area_equalization: equalization,
         quality,
         seconds: start.elapsed().as_secs_f64(),
         pullback_seconds,
+        shape_seconds,
         equalize_seconds,
         metrics_seconds,
     };

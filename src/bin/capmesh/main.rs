@@ -88,10 +88,23 @@ enum Command {
         /// Write a JSON report here.
         #[arg(long)]
         report: Option<PathBuf>,
-        /// Sweeps of the area equalization of the pulled-back mesh (0: the paper's plain
-        /// pull-back).
+        /// Sweeps of the area equalization of the pulled-back mesh with --optimize area (0: the
+        /// paper's plain pull-back; after the shape stage 10 sweeps run).
         #[arg(long, default_value_t = capmesh::remesh::DEFAULT_AREA_EQUALIZATION)]
         area_equalization: usize,
+        /// What is optimised after the pull-back: shape+area (isotropic triangles of
+        /// near-equal area, the default), area (the cap grid's connectivity, areas equalized)
+        /// or none (the paper's plain pull-back). The --lat-long grid keeps its grid lines:
+        /// area only.
+        #[arg(long, default_value = "shape+area")]
+        optimize: capmesh::remesh::Optimize,
+        /// Relaxation iterations of the shape stage (edge flips and tangential relaxation on
+        /// the surface).
+        #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().relax_iterations)]
+        relax_iterations: usize,
+        /// Polish iterations of the shape stage (joint area and shape steps).
+        #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().polish_iterations)]
+        polish_iterations: usize,
         #[command(flatten)]
         map: map_args::MapArgs,
     },
@@ -249,7 +262,7 @@ fn run(cli: Cli) -> Result<(), String> {
             harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, quiet: cli.quiet })
         }
         Command::Shape { inputs, csv, jobs, domain } => shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, quiet: cli.quiet }),
-        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, map } => {
+        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -259,7 +272,8 @@ fn run(cli: Cli) -> Result<(), String> {
             let read_seconds = t_read.elapsed().as_secs_f64();
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-            let mut options = RemeshOptions { grid, area_equalization, ..Default::default() };
+            let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations);
+            let mut options = RemeshOptions { grid, area_equalization, optimize, shape, ..Default::default() };
             map.apply(&mut options.param);
             let (out, rep) = remesh(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
             bar.finish();
@@ -292,9 +306,12 @@ fn run(cli: Cli) -> Result<(), String> {
                     seconds: f64,
                     read_seconds: f64,
                     pullback_seconds: f64,
+                    shape_seconds: f64,
                     equalize_seconds: f64,
                     metrics_seconds: f64,
                     write_seconds: f64,
+                    optimize: capmesh::remesh::Optimize,
+                    shape: capmesh::remesh::shape::ShapeReport,
                     area_equalization: capmesh::cap::area_refine::AreaRefineReport,
                     parameterization: &'a capmesh::ParamReport,
                 }
@@ -314,9 +331,12 @@ fn run(cli: Cli) -> Result<(), String> {
                         seconds: rep.seconds,
                         read_seconds,
                         pullback_seconds: rep.pullback_seconds,
+                        shape_seconds: rep.shape_seconds,
                         equalize_seconds: rep.equalize_seconds,
                         metrics_seconds: rep.metrics_seconds,
                         write_seconds,
+                        optimize: rep.optimize,
+                        shape: rep.shape,
                         area_equalization: rep.area_equalization,
                         parameterization: &rep.param,
                     },

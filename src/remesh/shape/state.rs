@@ -1,0 +1,142 @@
+//! The remesh being shaped: connectivity, each vertex's point in the map's plane and on the
+//! surface, and what each vertex may do. A vertex's surface position is always the lift of its
+//! planar point through the inverse map (paper Sec. 4.2), so it lies exactly on the input.
+
+use crate::mesh::geometry::signed_area_2d;
+use crate::mesh::TriMesh;
+use crate::remesh::locate::Locator;
+
+/// What a vertex of the remesh may do.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Role {
+    /// Moves in the plane (tangential relaxation, area equalization).
+    Free,
+    /// Slides along the input's boundary.
+    Boundary,
+    /// Stays (a closed surface's rim and bottom, a boundary corner).
+    Fixed,
+}
+
+/// The inverse map as a lift from the plane to the surface: point location among the planar
+/// images of the input's faces, then the barycentric combination of their corners.
+pub(crate) struct SurfaceLift<'a> {
+    surface: &'a TriMesh,
+    faces: &'a [[u32; 3]],
+    locator: Locator<'a>,
+}
+
+impl<'a> SurfaceLift<'a> {
+    /// The lift of the faces `faces` of `surface`, whose vertices sit at `plane`.
+    pub(crate) fn new(surface: &'a TriMesh, plane: &'a [[f64; 2]], faces: &'a [[u32; 3]]) -> Self {
+        Self { surface, faces, locator: Locator::new(plane, faces) }
+    }
+
+    /// The surface point of the planar point `q` and the input face it lies in, trying face
+    /// `hint` first (the answer does not depend on it, see [`Locator::locate_near`]).
+    pub(crate) fn lift(&self, q: [f64; 2], hint: u32) -> Option<([f64; 3], u32)> {
+        let hint = (hint != u32::MAX).then_some(hint as usize);
+        let loc = self.locator.locate_near(q, hint)?;
+        let [a, b, c] = self.faces[loc.face].map(|v| self.surface.vertices[v as usize]);
+        let w = loc.bary;
+        Some(([0, 1, 2].map(|k| w[0] * a[k] + w[1] * b[k] + w[2] * c[k]), loc.face as u32))
+    }
+}
+
+/// The remesh under optimisation.
+pub(crate) struct Shaping {
+    /// Faces (changed by flips).
+    pub faces: Vec<[u32; 3]>,
+    /// Planar point of each vertex (meaningful for vertices before `in_plane`).
+    pub plane: Vec<[f64; 2]>,
+    /// Surface position of each vertex.
+    pub position: Vec<[f64; 3]>,
+    /// The input face each vertex was last located in (a hint for the next lift).
+    pub hint: Vec<u32>,
+    /// What each vertex may do.
+    pub role: Vec<Role>,
+    /// Vertices from this index on have no point in the plane (a closed surface's bottom):
+    /// faces touching them are never flipped.
+    pub in_plane: usize,
+    /// +1 or -1: the orientation the planar faces keep.
+    pub orientation: f64,
+}
+
+impl Shaping {
+    /// Whether vertex `v` has a planar point.
+    pub fn planar(&self, v: u32) -> bool {
+        (v as usize) < self.in_plane
+    }
+
+    /// Whether the planar triangle `(a, b, c)` has the kept orientation and an area above
+    /// `min_area`.
+    pub fn oriented(&self, a: [f64; 2], b: [f64; 2], c: [f64; 2], min_area: f64) -> bool {
+        self.orientation * signed_area_2d(a, b, c) > min_area
+    }
+
+    /// The faces around each vertex (compressed rows: vertex `v`'s at `start[v]..start[v + 1]`).
+    pub fn incidence(&self) -> Incidence {
+        let n = self.plane.len();
+        let mut start = vec![0usize; n + 1];
+        for f in &self.faces {
+            for &v in f {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut next = start.clone();
+        let mut faces = vec![0u32; start[n]];
+        for (t, f) in self.faces.iter().enumerate() {
+            for &v in f {
+                faces[next[v as usize]] = t as u32;
+                next[v as usize] += 1;
+            }
+        }
+        Incidence { start, faces }
+    }
+
+    /// Colour classes of the vertices that move (`role != Fixed`): no two vertices of a class
+    /// share a face, so a class moves in parallel with the same result as one by one
+    /// (greedy colouring in vertex order: deterministic).
+    pub fn color_classes(&self, incidence: &Incidence) -> Vec<Vec<u32>> {
+        let n = self.plane.len();
+        let mut color = vec![u32::MAX; n];
+        let mut classes: Vec<Vec<u32>> = Vec::new();
+        let mut taken: Vec<bool> = Vec::new();
+        for v in 0..n {
+            if self.role[v] == Role::Fixed || incidence.of(v).is_empty() {
+                continue;
+            }
+            taken.clear();
+            taken.resize(classes.len() + 1, false);
+            for &t in incidence.of(v) {
+                for &u in &self.faces[t as usize] {
+                    if color[u as usize] != u32::MAX {
+                        taken[color[u as usize] as usize] = true;
+                    }
+                }
+            }
+            let c = taken.iter().position(|&x| !x).unwrap_or(classes.len());
+            if c == classes.len() {
+                classes.push(Vec::new());
+            }
+            color[v] = c as u32;
+            classes[c].push(v as u32);
+        }
+        classes
+    }
+}
+
+/// Faces around each vertex.
+pub(crate) struct Incidence {
+    start: Vec<usize>,
+    faces: Vec<u32>,
+}
+
+impl Incidence {
+    /// The faces at vertex `v`.
+    pub fn of(&self, v: usize) -> &[u32] {
+        &self.faces[self.start[v]..self.start[v + 1]]
+    }
+}
