@@ -186,3 +186,27 @@ fn square_sheet_keeps_its_corners() {
     eprintln!("square sheet: {stats:?}, boundary edges {ratio:.3} times the interior ones");
     assert!((0.6..1.6).contains(&ratio), "boundary edges {ratio} times the interior ones");
 }
+
+/// With edge splits and collapses (`--resample`) on a smooth open surface: the face count
+/// stays near the target, every vertex stays on the surface and the boundary on the
+/// input's boundary, the topology is kept, and the angles are at least as good as without.
+#[test]
+fn resampling_keeps_the_invariants() {
+    let name = "open_lv_endo_rabbit_chaste.obj.gz";
+    let mesh = load(name);
+    let mut options = RemeshOptions { grid: CapGrid::Uniform { faces: 5000 }, ..Default::default() };
+    options.shape = options.shape.with_resample(true);
+    let (out, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let (plain, _) = run(&mesh, Optimize::ShapeAndArea);
+    let (a, b) = (AngleStats::of(&out.vertices, &out.faces), AngleStats::of(&plain.vertices, &plain.faces));
+    eprintln!("{name} resampled: {a:?}, {} splits, {} collapses; without: {b:?}", rep.shape.splits, rep.shape.collapses);
+    assert!(rep.shape.splits > 0 && rep.shape.collapses > 0, "{:?}", rep.shape);
+    assert_eq!(validate(&out).unwrap().0, SurfaceKind::OpenDisk);
+    assert!((rep.quality.faces as f64 - 5000.0).abs() <= 500.0, "{} faces", rep.quality.faces);
+    assert!(rep.quality.d_surface_vertex_relative < 1e-9);
+    assert_eq!(rep.quality.zero_area_faces, 0);
+    let diag = diagonal(&mesh);
+    let worst = boundary_vertices(&out).iter().map(|&v| distance_to_boundary(&mesh, out.vertices[v])).fold(0.0, f64::max);
+    assert!(worst < 1e-9 * diag, "a boundary vertex is {worst} off the input's boundary");
+    assert!(a.mean_min_angle_deg >= b.mean_min_angle_deg && a.share_below_30 <= b.share_below_30.max(0.01), "{a:?} vs {b:?}");
+}

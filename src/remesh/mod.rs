@@ -234,14 +234,10 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         let lift = shape::state::SurfaceLift::new(mesh, &map.plane, &top_faces);
         let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &is_boundary_vertex(mesh)) };
         let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), in_plane, fixed: &fixed };
-        let (new_faces, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
+        let (new_faces, stays, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
         faces = new_faces;
+        fixed = stays;
         shape_report = report;
-        // Boundary vertices slid; the equalization keeps them where they are.
-        let boundary = crate::mesh::topology::is_boundary_vertex(&TriMesh::new(positions.clone(), faces.clone()));
-        for v in 0..n {
-            fixed[v] = fixed[v] || boundary[v];
-        }
     }
     let shape_seconds = t_shape.elapsed().as_secs_f64();
     progress::check(progress, Stage::Remesh, 0.5, "equalizing the areas")?;

@@ -105,6 +105,14 @@ enum Command {
         /// Polish iterations of the shape stage (joint area and shape steps).
         #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().polish_iterations)]
         polish_iterations: usize,
+        /// Weight of the shape term against the area term in the polish (larger: better
+        /// angles, less equal areas).
+        #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().shape_weight)]
+        shape_weight: f64,
+        /// Also split long and collapse short edges in the shape stage: better angles on
+        /// smooth surfaces, slivers where thin parts fold at the remesh's scale.
+        #[arg(long)]
+        resample: bool,
         #[command(flatten)]
         map: map_args::MapArgs,
     },
@@ -262,7 +270,7 @@ fn run(cli: Cli) -> Result<(), String> {
             harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, quiet: cli.quiet })
         }
         Command::Shape { inputs, csv, jobs, domain } => shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, quiet: cli.quiet }),
-        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, map } => {
+        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, resample, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -272,7 +280,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let read_seconds = t_read.elapsed().as_secs_f64();
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-            let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations);
+            let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(resample);
             let mut options = RemeshOptions { grid, area_equalization, optimize, shape, ..Default::default() };
             map.apply(&mut options.param);
             let (out, rep) = remesh(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;

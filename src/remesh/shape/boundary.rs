@@ -86,17 +86,34 @@ impl Track {
         self.arc[k] + t * (self.arc[k + 1] - self.arc[k])
     }
 
-    /// Arc lengths of the input's corners (see [`CORNER_DEG`]).
-    pub(crate) fn corners(&self) -> Vec<f64> {
+    /// Arc lengths of the input's corners at the scale `scale` (see [`CORNER_DEG`]): the
+    /// boundary vertices where the angle between the points `scale` before and after them
+    /// along the boundary is below the bound and smallest within `scale` (a scanned
+    /// boundary's jags below the remesh's edge length are not corners).
+    pub(crate) fn corners(&self, scale: f64) -> Vec<f64> {
         let m = self.position.len();
         let cos_corner = CORNER_DEG.to_radians().cos();
+        let length = self.length();
+        if !(scale > 0.0 && length > 4.0 * scale) {
+            return Vec::new();
+        }
+        let cos_at: Vec<f64> = (0..m)
+            .map(|k| {
+                let x = self.position[k];
+                let (u, w) = (sub(self.at(self.arc[k] - scale).1, x), sub(self.at(self.arc[k] + scale).1, x));
+                let l = norm(u) * norm(w);
+                if l > 0.0 { dot(u, w) / l } else { -1.0 }
+            })
+            .collect();
+        // A larger cosine is a sharper corner; ties go to the first vertex.
         (0..m)
             .filter(|&k| {
-                let x = self.position[k];
-                let (u, w) = (sub(self.position[(k + m - 1) % m], x), sub(self.position[(k + 1) % m], x));
-                let l = norm(u) * norm(w);
-                // angle < CORNER_DEG  <=>  cos(angle) > cos(CORNER_DEG)
-                l > 0.0 && dot(u, w) / l > cos_corner
+                cos_at[k] > cos_corner
+                    && (0..m).all(|j| {
+                        let d = (self.arc[j] - self.arc[k]).rem_euclid(length);
+                        let near = d.min(length - d) <= scale && j != k;
+                        !near || cos_at[j] < cos_at[k] || (cos_at[j] == cos_at[k] && j > k)
+                    })
             })
             .map(|k| self.arc[k])
             .collect()
@@ -133,11 +150,11 @@ fn loop_difference(from: f64, to: f64, length: f64) -> f64 {
 
 /// Put a remesh vertex on each input corner (the one nearest by arc length, when the move
 /// keeps its faces valid) and fix it there. `arc[v]` holds each boundary vertex's arc length.
-pub(crate) fn pin_corners(mesh: &mut Shaping, incidence: &Incidence, track: &Track, arc: &mut [f64]) -> usize {
+pub(crate) fn pin_corners(mesh: &mut Shaping, incidence: &Incidence, track: &Track, arc: &mut [f64], scale: f64) -> usize {
     let length = track.length();
     let boundary: Vec<usize> = (0..mesh.role.len()).filter(|&v| mesh.role[v] == Role::Boundary).collect();
     let mut pinned = 0;
-    for s in track.corners() {
+    for s in track.corners(scale) {
         let Some(&v) = boundary.iter().filter(|&&v| mesh.role[v] == Role::Boundary).min_by(|&&a, &&b| {
             loop_difference(arc[a], s, length).abs().total_cmp(&loop_difference(arc[b], s, length).abs())
         }) else {

@@ -204,7 +204,7 @@ mod tests {
         // Quad a=(0,0), b=(4,0.2)... split along the long diagonal a-b: two flat slivers.
         let plane = vec![[0.0, 0.0], [4.0, 0.0], [2.0, 0.5], [2.0, -0.5]];
         let position = vec![[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [2.0, 0.5, 0.0], [2.0, -0.5, z_d]];
-        Shaping { faces: vec![[0, 1, 2], [1, 0, 3]], plane, position, hint: vec![u32::MAX; 4], role: vec![Role::Free; 4], in_plane: 4, orientation: 1.0 }
+        Shaping { faces: vec![[0, 1, 2], [1, 0, 3]], plane, position, hint: vec![u32::MAX; 4], role: vec![Role::Free; 4], has_plane: vec![true; 4], orientation: 1.0 }
     }
 
     #[test]

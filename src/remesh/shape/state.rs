@@ -46,7 +46,7 @@ impl<'a> SurfaceLift<'a> {
 pub(crate) struct Shaping {
     /// Faces (changed by flips).
     pub faces: Vec<[u32; 3]>,
-    /// Planar point of each vertex (meaningful for vertices before `in_plane`).
+    /// Planar point of each vertex (meaningful where `has_plane`).
     pub plane: Vec<[f64; 2]>,
     /// Surface position of each vertex.
     pub position: Vec<[f64; 3]>,
@@ -54,9 +54,9 @@ pub(crate) struct Shaping {
     pub hint: Vec<u32>,
     /// What each vertex may do.
     pub role: Vec<Role>,
-    /// Vertices from this index on have no point in the plane (a closed surface's bottom):
-    /// faces touching them are never flipped.
-    pub in_plane: usize,
+    /// Whether each vertex has a planar point (not a closed surface's bottom): faces
+    /// touching one that has not are never changed.
+    pub has_plane: Vec<bool>,
     /// +1 or -1: the orientation the planar faces keep.
     pub orientation: f64,
 }
@@ -64,7 +64,7 @@ pub(crate) struct Shaping {
 impl Shaping {
     /// Whether vertex `v` has a planar point.
     pub fn planar(&self, v: u32) -> bool {
-        (v as usize) < self.in_plane
+        self.has_plane[v as usize]
     }
 
     /// Whether the planar triangle `(a, b, c)` has the kept orientation and an area above

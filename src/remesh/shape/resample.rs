@@ -1,0 +1,298 @@
+//! Edge splits and collapses towards a target edge length (ours; see [`super`]), as in
+//! isotropic remeshing (Botsch and Kobbelt 2004): edges longer than 4/3 of the target are
+//! split, edges shorter than 4/5 of it collapsed.
+//!
+//! A cap grid relaxed with its own connectivity keeps the grid's rows: where the map
+//! stretches by less than `sqrt(3)` the stretched lattice is already Delaunay, so no flip
+//! changes it and no relaxation can make it equilateral, since each row has too many or too
+//! few vertices. Splits and collapses change the rows' counts. A new vertex is the lift of
+//! the planar midpoint (or, on an open surface's boundary, of the boundary track's arc
+//! midpoint), a collapse keeps the remaining vertex's planar point or moves it to the
+//! midpoint, so every vertex stays on the surface; an operation is made only when every
+//! changed face keeps its planar orientation and its side on the surface, and a collapse
+//! also only when it creates no edge longer than the split length.
+
+use super::boundary::Track;
+use super::state::{Incidence, Role, Shaping, SurfaceLift};
+use crate::mesh::fasthash::FastMap;
+use crate::mesh::geometry::{cross, dot, norm, signed_area_2d, sub};
+
+/// Edges longer than this many target lengths are split.
+pub(crate) const SPLIT: f64 = 4.0 / 3.0;
+/// Edges shorter than this many target lengths are collapsed.
+pub(crate) const COLLAPSE: f64 = 4.0 / 5.0;
+
+/// Cosine of the largest turn of a face's normal in a collapse (45 degrees): a collapse
+/// that tilts a face more folds the surface where it is curved at the edge's scale.
+const MAX_TURN_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// Smallest angle (degrees) a collapse may leave in a face, unless the face had a smaller
+/// one before.
+const COLLAPSE_MIN_ANGLE_DEG: f64 = 25.0;
+
+/// The smallest angle of a triangle.
+fn smallest_angle(t: [[f64; 3]; 3]) -> f64 {
+    let a = crate::mesh::geometry::triangle_angles(t[0], t[1], t[2]);
+    a[0].min(a[1]).min(a[2])
+}
+
+/// Most neighbours a collapse may leave a vertex with (two fewer on the boundary).
+const MAX_VALENCE: usize = 8;
+
+/// Each undirected edge `(min, max)`: its face where it runs min -> max, and where it runs
+/// max -> min (`u32::MAX` when none).
+fn edge_faces(faces: &[[u32; 3]]) -> FastMap<(u32, u32), [u32; 2]> {
+    let mut edges: FastMap<(u32, u32), [u32; 2]> = FastMap::default();
+    for (t, f) in faces.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_insert([u32::MAX; 2])[usize::from(a > b)] = t as u32;
+        }
+    }
+    edges
+}
+
+fn length(mesh: &Shaping, a: u32, b: u32) -> f64 {
+    norm(sub(mesh.position[a as usize], mesh.position[b as usize]))
+}
+
+/// The corner of `face` after the directed edge `a -> b`.
+fn third(face: [u32; 3], a: u32, b: u32) -> Option<u32> {
+    (0..3).find(|&k| face[k] == a && face[(k + 1) % 3] == b).map(|k| face[(k + 2) % 3])
+}
+
+/// Add a vertex; returns its number.
+fn push_vertex(mesh: &mut Shaping, arc: &mut Vec<f64>, q: [f64; 2], x: [f64; 3], hint: u32, role: Role, s: f64) -> u32 {
+    mesh.plane.push(q);
+    mesh.position.push(x);
+    mesh.hint.push(hint);
+    mesh.role.push(role);
+    mesh.has_plane.push(true);
+    arc.push(s);
+    (mesh.plane.len() - 1) as u32
+}
+
+/// Split the edges longer than `max_len`, longest first, no two in one face per call.
+/// Returns the number of splits.
+pub(crate) fn split_long_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &mut Vec<f64>, lift: &SurfaceLift, max_len: f64) -> usize {
+    let edges = edge_faces(&mesh.faces);
+    let mut long: Vec<(f64, (u32, u32), [u32; 2])> = edges
+        .iter()
+        .filter(|(&(a, b), _)| mesh.planar(a) && mesh.planar(b))
+        .map(|(&(a, b), &t)| (length(mesh, a, b), (a, b), t))
+        .filter(|&(l, _, _)| l > max_len)
+        .collect();
+    long.sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+    let mut touched = vec![false; mesh.faces.len()];
+    let mut splits = 0;
+    for (_, (a, b), [t1, t2]) in long {
+        let interior = t1 != u32::MAX && t2 != u32::MAX;
+        if [t1, t2].iter().any(|&t| t != u32::MAX && touched[t as usize]) {
+            continue;
+        }
+        if [t1, t2].iter().any(|&t| t != u32::MAX && !mesh.faces[t as usize].iter().all(|&v| mesh.planar(v))) {
+            continue;
+        }
+        // t1 runs a -> b: (a, b, c); t2 runs b -> a: (b, a, d).
+        let c = (t1 != u32::MAX).then(|| third(mesh.faces[t1 as usize], a, b)).flatten();
+        let d = (t2 != u32::MAX).then(|| third(mesh.faces[t2 as usize], b, a)).flatten();
+        let (q, x, hint, role, s) = if interior {
+            let (pa, pb) = (mesh.plane[a as usize], mesh.plane[b as usize]);
+            let q = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+            let Some((x, h)) = lift.lift(q, mesh.hint[a as usize]) else { continue };
+            (q, x, h, Role::Free, 0.0)
+        } else {
+            // A boundary edge of an open surface: the new vertex on the track between them.
+            let Some(track) = track else { continue };
+            if mesh.role[a as usize] == Role::Free || mesh.role[b as usize] == Role::Free {
+                continue;
+            }
+            let len = track.length();
+            let (sa, sb) = (arc[a as usize], arc[b as usize]);
+            let mut gap = (sb - sa).rem_euclid(len);
+            if gap > 0.5 * len {
+                gap -= len;
+            }
+            let s = (sa + 0.5 * gap).rem_euclid(len);
+            let (q, x) = track.at(s);
+            (q, x, u32::MAX, Role::Boundary, s)
+        };
+        // The new faces, checked before anything changes.
+        let mut new_faces: Vec<(usize, [u32; 3], [u32; 3])> = Vec::new();
+        let w = mesh.plane.len() as u32;
+        if let Some(c) = c {
+            new_faces.push((t1 as usize, [a, w, c], [w, b, c]));
+        }
+        if let Some(d) = d {
+            new_faces.push((t2 as usize, [b, w, d], [w, a, d]));
+        }
+        // A split cannot fold the planar mesh (the new point is on the edge, or on the
+        // boundary track beyond it), and its faces follow the surface better than the face
+        // they replace, however they turn: only the planar orientation and a 3-D area are
+        // required.
+        let ok = new_faces.iter().all(|&(_, f, g)| {
+            [f, g].iter().all(|h| {
+                let p = h.map(|v| if v == w { q } else { mesh.plane[v as usize] });
+                let y = h.map(|v| if v == w { x } else { mesh.position[v as usize] });
+                mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && norm(cross(sub(y[1], y[0]), sub(y[2], y[0]))) > 0.0
+            })
+        });
+        if new_faces.is_empty() || !ok {
+            continue;
+        }
+        push_vertex(mesh, arc, q, x, hint, role, s);
+        for (t, f, g) in new_faces {
+            mesh.faces[t] = f;
+            touched[t] = true;
+            mesh.faces.push(g);
+            touched.push(true);
+        }
+        splits += 1;
+    }
+    splits
+}
+
+/// Collapse the edges shorter than `min_len`, shortest first: a free vertex into its
+/// neighbour (both free: at the planar midpoint), when the edge's ring is manifold after it
+/// (exactly two common neighbours), no neighbour falls to valence 3, every moved face keeps
+/// its orientation and side, and no edge becomes longer than `max_len`. Removed vertices
+/// keep their slots with no face (see [`compact`]). Returns the number of collapses.
+pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, lift: &SurfaceLift, min_len: f64, max_len: f64) -> usize {
+    let edges = edge_faces(&mesh.faces);
+    let mut short: Vec<(f64, (u32, u32), [u32; 2])> = edges
+        .iter()
+        .filter(|(_, t)| t[0] != u32::MAX && t[1] != u32::MAX)
+        .map(|(&(a, b), &t)| (length(mesh, a, b), (a, b), t))
+        .filter(|&(l, _, _)| l < min_len)
+        .collect();
+    short.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    let n = mesh.plane.len();
+    let mut touched = vec![false; n];
+    let mut removed_face = vec![false; mesh.faces.len()];
+    let mut collapses = 0;
+    let neighbours = |mesh: &Shaping, v: u32| -> Vec<u32> {
+        let mut out: Vec<u32> = incidence.of(v as usize).iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| u != v).collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    };
+    for (_, (a, b), [t1, t2]) in short {
+        if touched[a as usize] || touched[b as usize] || !mesh.planar(a) || !mesh.planar(b) {
+            continue;
+        }
+        // Remove u, keep v.
+        let (u, v) = match (mesh.role[a as usize], mesh.role[b as usize]) {
+            (Role::Free, Role::Free) => (a, b),
+            (Role::Free, _) => (a, b),
+            (_, Role::Free) => (b, a),
+            _ => continue,
+        };
+        let (nu, nv) = (neighbours(mesh, u), neighbours(mesh, v));
+        let common = nu.iter().filter(|x| nv.binary_search(x).is_ok()).count();
+        if common != 2 {
+            continue;
+        }
+        let c = third(mesh.faces[t1 as usize], a, b);
+        let d = third(mesh.faces[t2 as usize], b, a);
+        let (Some(c), Some(d)) = (c, d) else { continue };
+        if [c, d].iter().any(|&x| incidence.of(x as usize).len() <= 3) {
+            continue;
+        }
+        // The merged vertex's valence: the union of both rings less u and v themselves.
+        let merged = nu.len() + nv.len() - common - 2;
+        if merged > MAX_VALENCE - usize::from(mesh.role[v as usize] != Role::Free) * 2 {
+            continue;
+        }
+        let both_free = mesh.role[v as usize] == Role::Free;
+        let (q, x, hint) = if both_free {
+            let (pu, pv) = (mesh.plane[u as usize], mesh.plane[v as usize]);
+            let q = [0.5 * (pu[0] + pv[0]), 0.5 * (pu[1] + pv[1])];
+            let Some((x, h)) = lift.lift(q, mesh.hint[v as usize]) else { continue };
+            (q, x, h)
+        } else {
+            (mesh.plane[v as usize], mesh.position[v as usize], mesh.hint[v as usize])
+        };
+        // Every face around u or v that survives, with both at the merged point.
+        let ring: Vec<u32> = incidence.of(u as usize).iter().chain(incidence.of(v as usize)).copied().filter(|&t| t != t1 && t != t2).collect();
+        let ok = ring.iter().all(|&t| {
+            let f = mesh.faces[t as usize];
+            if !f.iter().all(|&w| mesh.planar(w)) {
+                return false;
+            }
+            let p = f.map(|w| if w == u || w == v { q } else { mesh.plane[w as usize] });
+            let y = f.map(|w| if w == u || w == v { x } else { mesh.position[w as usize] });
+            let old = f.map(|w| mesh.position[w as usize]);
+            let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
+            let n1 = cross(sub(y[1], y[0]), sub(y[2], y[0]));
+            let long = f.iter().any(|&w| w != u && w != v && norm(sub(mesh.position[w as usize], x)) > max_len);
+            let sliver = smallest_angle(y) < smallest_angle(old).min(COLLAPSE_MIN_ANGLE_DEG.to_radians());
+            mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1) && !long && !sliver
+        });
+        if !ok {
+            continue;
+        }
+        for &t in &ring {
+            for w in mesh.faces[t as usize].iter_mut() {
+                if *w == u {
+                    *w = v;
+                }
+            }
+        }
+        removed_face[t1 as usize] = true;
+        removed_face[t2 as usize] = true;
+        mesh.plane[v as usize] = q;
+        mesh.position[v as usize] = x;
+        mesh.hint[v as usize] = hint;
+        for w in nu.iter().chain(&nv).chain([&u, &v]) {
+            touched[*w as usize] = true;
+        }
+        collapses += 1;
+    }
+    if collapses > 0 {
+        let mut k = 0;
+        mesh.faces.retain(|_| {
+            k += 1;
+            !removed_face[k - 1]
+        });
+    }
+    collapses
+}
+
+/// Drop the vertices that no face uses, renumbering the rest in order; `arc` follows.
+pub(crate) fn compact(mesh: &mut Shaping, arc: &mut Vec<f64>) {
+    let n = mesh.plane.len();
+    let mut used = vec![false; n];
+    for f in &mesh.faces {
+        for &v in f {
+            used[v as usize] = true;
+        }
+    }
+    if used.iter().all(|&u| u) {
+        return;
+    }
+    let mut index = vec![u32::MAX; n];
+    let mut next = 0u32;
+    for v in 0..n {
+        if used[v] {
+            index[v] = next;
+            next += 1;
+        }
+    }
+    for f in mesh.faces.iter_mut() {
+        *f = f.map(|v| index[v as usize]);
+    }
+    let keep = |v: usize| used[v];
+    fn filter<T: Copy>(xs: &mut Vec<T>, keep: &dyn Fn(usize) -> bool) {
+        let mut i = 0;
+        xs.retain(|_| {
+            i += 1;
+            keep(i - 1)
+        });
+    }
+    filter(&mut mesh.plane, &keep);
+    filter(&mut mesh.position, &keep);
+    filter(&mut mesh.hint, &keep);
+    filter(&mut mesh.role, &keep);
+    filter(&mut mesh.has_plane, &keep);
+    filter(arc, &keep);
+}
