@@ -39,11 +39,9 @@ pub struct RefineOptions {
     /// Sweeps at most. Default [`DEFAULT_SWEEPS`].
     pub sweeps: usize,
     /// The first trial of each vertex's line search is `omega` times the Gauss-Newton step
-    /// (then halved until the local sum falls). Default 1.3: on the eleven shared meshes
-    /// (2026-11-30) 30 sweeps at 1.3 left the mean |d_area| of 50 plain sweeps (within 3%;
-    /// the bunny 0.0409 -> 0.0370) and the mean |d_angle| within 1%, except the MEG helmet
-    /// (0.0790 -> 0.0829); 48k brain refinement 2.4 -> 1.6 s. At 1.5 the helmet's angles went
-    /// to 0.093 in 25 sweeps, 0.121 in 50. 1 is plain Gauss-Seidel.
+    /// (then halved until the local sum falls). Default 1.3: 30 sweeps at 1.3 reach about what 50
+    /// plain sweeps do on the shared meshes; at 1.5 the MEG helmet's angles degrade. 1 is plain
+    /// Gauss-Seidel.
     pub over_relaxation: f64,
     /// A vertex is stepped in a sweep only when its own last step, or the last step of a
     /// vertex it shares a face with, moved by at least this fraction of that vertex's
@@ -68,17 +66,11 @@ impl RefineOptions {
 
 /// Default of [`RefineOptions::active_move`]: a step of `1e-4` of the shortest edge changes
 /// the areas of the vertex's faces by about `2e-4` of themselves, a few percent of the
-/// smallest mean `|d_area|` the maps reach (0.005 on the synthetic ellipsoids). Measured
-/// (2026-12-01, against stepping every vertex): on the 100k closed ellipsoid 80% of the
-/// vertices moved by `1e-5` to `1e-4` of their shortest edge in every sweep after the
-/// first few, and the refinement took 658 thousand vertex steps instead of 3.0 million,
-/// 0.27 s instead of 0.72 s, mean `|d_area|` 0.00542 -> 0.00543; 164k ellipsoid 3.3 instead
-/// of 4.9 million steps, 0.90 s instead of 1.24 s, 0.00841 -> 0.00843; on the eleven shared
-/// meshes and the 10k ellipsoid, whose maps are further from equiareal, nearly every vertex
-/// keeps moving (the hand skipped 42 of 1.58 million steps) and the maps' mean `|d_area|`
-/// and `|d_angle|` were unchanged to 0.2%. At `3e-4` and `1e-3` the 164k ellipsoid's
-/// refinement took 0.55 and 0.25 s but its mean `|d_area|` rose to 0.00851 and 0.00855, the
-/// 10k ellipsoid's 0.00474 -> 0.00477 and 0.00502.
+/// smallest mean `|d_area|` the maps reach (0.005 on the synthetic ellipsoids). On large,
+/// nearly equiareal maps most vertices stop moving after a few sweeps and are skipped (the
+/// 100k ellipsoid: a fifth of the vertex steps, the same mean `|d_area|` to 0.2%); maps
+/// further from equiareal keep nearly every vertex moving. Larger thresholds left the large
+/// maps measurably less equiareal.
 pub const ACTIVE_MOVE: f64 = 1e-4;
 
 /// Stop when a sweep lowers `sum d_area^2` by less than this fraction.
@@ -86,7 +78,7 @@ const TOLERANCE: f64 = 1e-4;
 
 /// Do nothing (or stop) once the mean `|d_area|` is below this: a 0.1% mean area error is
 /// below anything a remesh or a shape measure can show, and the sweeps converge slowly
-/// (the synthetic 100k disk maps at 0.00055; 50 sweeps took 1.5 s to reach 0.00053).
+/// (50 more sweeps take the synthetic 100k disk only from 0.00055 to 0.00053).
 pub const GOOD_ENOUGH: f64 = 1e-3;
 
 /// Refine the planar positions `plane` of the surface `(vertices, faces)` for
@@ -139,8 +131,8 @@ pub fn refine_towards(
     let orientation = if free_signs < 0.0 { -1.0 } else { 1.0 };
     let image_area = |lifted: &[[f64; 3]], f: &[u32; 3]| triangle_area(lifted[f[0] as usize], lifted[f[1] as usize], lifted[f[2] as usize]);
     // Total image area, mean |d_area| and sum of d_area^2 of `faces` on `lifted`; each face's
-    // area and logarithm once, in parallel (it ran once per sweep on one thread, 5 ms of each
-    // 25 ms sweep on the hand), summed in face order so that the stopping test does not
+    // area and logarithm once, in parallel (it ran once per sweep on one thread, a fifth of
+    // each sweep on the hand), summed in face order so that the stopping test does not
     // depend on the threads' split.
     let measure = |faces: &[[u32; 3]], lifted: &[[f64; 3]]| -> (f64, f64, f64) {
         let areas: Vec<f64> = faces.par_iter().map(|f| image_area(lifted, f)).collect();
@@ -263,9 +255,8 @@ impl ClassOrder {
 
 /// One face seen from one of its corners `v`: the next two corners counter-clockwise (so
 /// `(v, a, b)` has the face's orientation) and `ln` of the face's source area (NaN where it
-/// is not positive). A vertex's step reads only its wedges and its neighbours' positions
-/// (hand, one thread, 2026-11-30: refinement 1.31 -> 1.04 s against per-vertex face lists
-/// that looked up each face's corners and source area).
+/// is not positive). A vertex's step reads only its wedges and its neighbours' positions,
+/// which is faster than per-vertex face lists that look up each face's corners and area.
 #[derive(Debug, Clone, Copy)]
 struct Wedge {
     a: u32,

@@ -7,11 +7,11 @@
 //! bunny from 10 times and the closed hippocampus from 20 times had hundreds of vertices
 //! mapped within `1e-12` of each other; the power diagram's weights then need differences
 //! below the resolution of `f64`, the flips of every Newton step fail however short the step,
-//! and the transport stops with [`OmtError::Stalled`] at a mass error near `1e-4` (measured
-//! 2026-12-01: bunny x10 fails at `lambda` 0.2 and 0.35, maps at 0.5; bunny x20 needs 0.8;
-//! hippocampus x20 maps from 0.35; open surfaces, whose whole boundary lies on the circle,
-//! mapped up to x20 at their default `lambda`). Stretched 50 times, the bunny mapped, but
-//! with a mean `|d_area|` of 2.48 after a fold repair that moved vertices across the disk. A
+//! and the transport stops with [`OmtError::Stalled`] at a mass error near `1e-4` (the bunny
+//! stretched 10 times maps from `lambda` 0.5, 20 times from 0.8; open surfaces, whose whole
+//! boundary lies on the circle, map up to x20 at their default `lambda`). Stretched 50 times,
+//! the bunny mapped, but with a mean `|d_area|` of 2.48 after a fold repair that moved
+//! vertices across the disk. A
 //! larger `lambda` keeps more of the stretch-energy map, which spreads the area instead of
 //! squeezing it, so [`super::parameterize()`] maps a closed surface again with the next value
 //! of [`ParamOptions::closed_lambda_fallbacks`] when its transport stalls or its map is poor
@@ -26,8 +26,8 @@ use crate::mesh::{repair, validate, SurfaceKind, TriMesh};
 use crate::omt::OmtError;
 
 /// The default [`ParamOptions::closed_lambda_fallbacks`]: each tried in turn, above the
-/// `lambda` that failed. 0.5 and 0.8 rescued the stretched meshes above (with the radius
-/// search started at its bound, 2026-12-02: bunny x10 at 0.5, x50 at 1); 1 (the stretch
+/// `lambda` that failed. 0.5 and 0.8 rescued the stretched meshes above (the bunny
+/// stretched 10 times at 0.5, 50 times at 1); 1 (the stretch
 /// energy map alone) is the last resort because the fit of the map's angles is worst there.
 pub const DEFAULT_LAMBDA_FALLBACKS: [f64; 3] = [0.5, 0.8, 1.0];
 

@@ -34,12 +34,10 @@ use std::time::Instant;
 
 /// Relative L1 mass error (`sum |m_i - tau_i| / sum tau_i`) at which the radius search's
 /// transport solves stop. Newton's last step takes the error from about `1e-6` to `1e-10`;
-/// on the eleven shared meshes (2026-11-30) `1e-5` left every mean `|d_area|` and
-/// `|d_angle|` of `1e-7` within 1% (hand 0.0271 -> 0.0273, bird skull 0.1335 -> 0.1339) and
-/// saved one Newton step on the hand, the 48k and 12k brains, the face and the hippocampal
-/// sheet (48k brain transport 1.68 -> 1.51 s). A search at full resolution hands over its map
-/// at `r*` without another solve. `1e-3` for the search and the final map alike was worse
-/// (hand 0.0302): the search's energies, not the final map, need the digits.
+/// `1e-5` leaves the maps' mean `|d_area|` and `|d_angle|` within 1% of `1e-7`'s and saves a
+/// Newton step on most meshes. A search at full resolution hands over its map at `r*`
+/// without another solve. `1e-3` for the search and the final map alike was worse: the
+/// search's energies, not the final map, need the digits.
 pub const MASS_TOLERANCE: f64 = 1e-5;
 
 /// Relative L1 mass error at which the final full-resolution transport stops (the map at
@@ -47,14 +45,8 @@ pub const MASS_TOLERANCE: f64 = 1e-5;
 /// level below which the area refinement stops too ([`super::area_refine::GOOD_ENOUGH`]),
 /// since the regularisation and the face-level refinement that follow move the vertices far
 /// more. Newton converges quadratically there, so this saves the last step whenever the one
-/// before it lands below `1e-3`. Measured 2026-12-01 against [`MASS_TOLERANCE`] (search
-/// unchanged at `1e-5`): one full-resolution Newton step fewer on the face, the hippocampal
-/// sheet, the 12k and 48k brains, the lung and the 100k and 164k ellipsoids (their errors
-/// before the last step 1e-4 to 9e-4), mean `|d_area|` and `|d_angle|` within 0.8% (48k
-/// brain 0.00676 -> 0.00677, 164k ellipsoid 0.00831 -> 0.00838, lung 0.01827 -> 0.01821),
-/// transport 48k brain 0.81 -> 0.67-0.80 s, 164k ellipsoid 3.13 -> 2.64-2.76 s; the hand
-/// (1.4e-3 before its last step) keeps its six steps. At `5e-3` the 100k ellipsoid stopped
-/// at 4e-3, one step sooner, and its mean `|d_area|` rose 11% (0.00542 -> 0.00602).
+/// before it lands below `1e-3`, with mean `|d_area|` and `|d_angle|` within 1% of
+/// [`MASS_TOLERANCE`]'s; at `5e-3` the 100k ellipsoid's mean `|d_area|` rose 11%.
 pub const TRANSPORT_TOLERANCE: f64 = 1e-3;
 
 /// Options of [`parameterize`].
@@ -158,21 +150,15 @@ pub const DEFAULT_OPEN_LAMBDA: f64 = 0.5;
 
 /// Stretch-energy iterations of the open surfaces' initial map that factor their own
 /// matrix; the later ones reuse the last factorization (the matrix changes little once the
-/// map nears its fixed point) unless their step goes uphill or folds a face. Measured
-/// 2026-11-30 on the five shared open meshes and the 101k synthetic disk against factoring
-/// every iteration: final energy ratios equal to 3-4 digits (hand 1.0031 -> 1.0033, face
-/// 1.0008, hippocampal sheet 1.0030), mean |d_area| and |d_angle| within 2% (hand 0.0275 ->
-/// 0.0269), 6-7 of the 10 iterations reused; flattening hand 1.06 -> 0.62 s, face 0.20 ->
-/// 0.14 s, 101k disk 0.98 -> 0.79 s. Closed surfaces factor every iteration (see the
-/// option's doc).
+/// map nears its fixed point) unless their step goes uphill or folds a face. Against
+/// factoring every iteration the final energies agree to 3-4 digits and the maps' mean
+/// `|d_area|` and `|d_angle|` to 2%, with 6-7 of the 10 iterations reusing a factorization.
+/// Closed surfaces factor every iteration (see the option's doc).
 pub const DEFAULT_OPEN_FACTORED_ITERATIONS: usize = 3;
 
-/// Transport sites of the radius search by default (see [`ParamOptions::search_sites`]).
-/// Measured on the eleven shared meshes (2026-11-30, one run each): 2000 against 4000 leaves
-/// the mean |d_area| and |d_angle| within 1% on all (hippocampal sheet 0.0219 -> 0.0215,
-/// 0.4325 -> 0.4274) and brings the search to the 4k-8k meshes: transport of the left
-/// ventricle 0.48 -> 0.15 s, closed hippocampus 1.07 -> 0.52 s, lung 1.37 -> 1.00 s. At 1000
-/// the 12k brain went from 0.0124 / 0.306 to 0.0133 / 0.320.
+/// Transport sites of the radius search by default (see [`ParamOptions::search_sites`]):
+/// against 4000 the mean |d_area| and |d_angle| stay within 1% on the shared meshes, and the
+/// 4k-8k-vertex meshes search on a coarse level too; at 1000 the 12k brain's map was worse.
 pub const DEFAULT_SEARCH_SITES: usize = 2000;
 
 /// Largest ratio of vertices to coarse sites in the radius search. The coarse energy follows
@@ -186,15 +172,10 @@ pub const SEARCH_RATIO: usize = 16;
 /// surface: below `4 * search_sites` vertices it searches on a quarter of its vertices at
 /// most (a covering by 2-hop balls, about 1 site in 8 to 10) instead of at full resolution
 /// or on 1-hop balls (1 in 3 or 4). The closed surfaces' energy falls to the bound of `Z*`
-/// (every shared closed mesh), which the coarse search finds as well. Measured 2026-12-01
-/// against the 2000-site default alone, one run each, parameterization with both
-/// punctures: bird skull (2.1k vertices, full resolution before) 0.227 -> 0.166 s, bunny
-/// (1.8k) 0.151 -> 0.090 s, closed hippocampus (6k, 1503 -> 610 sites) 0.290 -> 0.237 s;
-/// `Z*` unchanged, mean `|d_area|` and `|d_angle|` within 0.2% (bird 0.1286 -> 0.1285 and
-/// 0.3722 -> 0.3729). Open surfaces keep their searches: their minima are interior and a
-/// coarse level this small moves them (the sampled caps of `tests/param_cap_anchor.rs`, 1.3k
-/// and 1.5k vertices, searched on at most a quarter of them: `Z*` off by 0.024 and 0.030
-/// where 0.02 is allowed; the MEG helmet 0.637 -> 0.675 on a flat minimum).
+/// (every shared closed mesh), which the coarse search finds as well, with the same `Z*` and
+/// distortions within 0.2%. Open surfaces keep their searches: their minima are interior and
+/// a coarse level this small moves them (the sampled caps of `tests/param_cap_anchor.rs`
+/// would miss their `Z*` by more than the 0.02 allowed).
 pub const SMALL_SEARCH_RATIO: usize = 4;
 
 /// Fewest coarse sites requested of a closed surface's coarse radius search: closed meshes

@@ -19,11 +19,9 @@ pub enum PunctureEnd {
     /// repair and refinement; with a fixed domain, which has no search, both ends are
     /// finished and the final maps compared). The result does not depend on how the input
     /// is oriented, and it is better on the shared meshes (bunny 0.039 instead of 0.16).
-    /// Deciding before the full-resolution half instead of after it (measured 2026-12-01):
-    /// the search maps ranked the ends as the finished maps do on five of the six shared
-    /// closed meshes, and the sixth is a tie (48k brain: 0.1547 against 0.1548 searched,
-    /// 0.0068 against 0.0067 finished, mean `|d_angle|` 0.311 against 0.296); the kept end's
-    /// second half runs on both cores.
+    /// The search maps rank the ends as the finished maps do on the shared closed meshes (or
+    /// tie), and deciding before the full-resolution half lets the kept end's second half run
+    /// on both cores.
     #[default]
     Best,
     /// The end with the lower input `Z` (the paper's "bottom" for an input standing along `Z`).

@@ -162,8 +162,8 @@ fn main() -> ExitCode {
     }
     // The whole command on a worker thread of rayon's pool, so that the parallel loops of the
     // reading, the metrics and the writing are split in place too (the library's entry
-    // points do this for the pipeline itself, see `capmesh::pool`): MEG helmet remesh 0.153
-    // -> 0.138 s against the library's alone (medians of 25 alternating runs).
+    // points do this for the pipeline itself, see `capmesh::pool`); measurably faster on the
+    // small meshes than the library's alone.
     match rayon::scope(|_| run(cli)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(msg) => {
