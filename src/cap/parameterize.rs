@@ -391,7 +391,7 @@ fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress:
                     }
                     (None, Some(e)) => Err(e),
                     // Each attempt keeps a map or a failure; this is for the compiler.
-                    (None, None) => Err(Error::Unsupported("no parameterization was attempted".into())),
+                    (None, None) => Err(Error::Internal("no parameterization was attempted".into())),
                 };
             }
         }
@@ -592,7 +592,7 @@ pub(super) fn search_radius(mesh: &TriMesh, options: &ParamOptions, rank_ends: b
             }
             coarse_newton_iterations = coarse_transport.as_ref().map_or(0, |t| t.newton_iterations);
             coarse_symbolic = coarse_transport.as_ref().map_or(0, |t| t.symbolic_factorizations);
-            let SearchBest { r, map, prolonged, .. } = best.ok_or_else(|| Error::Unsupported("radius search made no evaluation".into()))?;
+            let SearchBest { r, map, prolonged, .. } = best.ok_or_else(|| Error::Internal("radius search made no evaluation".into()))?;
             if rank_ends {
                 let on_cap: Vec<[f64; 3]> = map.as_ref().map_or(&prolonged, |m| &m.centroids).iter().map(|&q| inverse_stereographic(q)).collect();
                 search_area_distortion = Some(Stats::of(area_distortion(&work.vertices, &on_cap, &faces)).mean_abs);
