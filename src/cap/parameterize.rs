@@ -247,13 +247,21 @@ pub struct RadiusSample {
     pub newton_iterations: usize,
 }
 
+/// Serialize a report field as its `Display` string (the JSON keeps the words of the
+/// command-line output).
+fn as_display<T: std::fmt::Display, S: serde::Serializer>(value: &T, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.collect_str(value)
+}
+
 /// Everything measured about one parameterization.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct ParamReport {
-    /// Domain used.
-    pub domain: String,
-    /// Surface kind.
-    pub kind: String,
+    /// Domain used (serialized as its display string, e.g. `"adaptive"`, `"radius=1.5"`).
+    #[serde(serialize_with = "as_display")]
+    pub domain: Domain,
+    /// Surface kind (serialized as its display string, `"open disk"` or `"closed genus-0"`).
+    #[serde(serialize_with = "as_display")]
+    pub kind: SurfaceKind,
     /// Input vertices.
     pub n_vertices: usize,
     /// Input faces.
@@ -328,6 +336,8 @@ pub struct CapMap {
     /// Input faces of the punctured quad of a closed surface: they map to the cap's flat
     /// bottom (their corners on the rim `Z = Z*`). Empty for open surfaces.
     pub bottom_faces: Vec<usize>,
+    /// The kind of surface mapped (as in [`ParamReport::kind`]).
+    pub kind: SurfaceKind,
     /// What was measured.
     pub report: ParamReport,
 }
@@ -401,7 +411,7 @@ fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress:
 /// A map poor enough that a closed surface is mapped again with a larger `lambda`: mean
 /// `|d_area|` above [`POOR_MAP_AREA_DISTORTION`] on the adaptive cap.
 fn is_poor(map: &CapMap) -> bool {
-    map.report.domain == Domain::Adaptive.to_string() && !(map.report.area_distortion.mean_abs <= POOR_MAP_AREA_DISTORTION)
+    map.report.domain == Domain::Adaptive && !(map.report.area_distortion.mean_abs <= POOR_MAP_AREA_DISTORTION)
 }
 
 /// `map` with the attempts not kept, its wall time counted from `start` when there were any.
@@ -696,8 +706,8 @@ pub(super) fn finish(mesh: &TriMesh, s: Searched, options: &ParamOptions, progre
     let flipped_faces = folded_faces(&plane, &faces).len();
     let spherical = options.domain != Domain::Disk;
     let report = ParamReport {
-        domain: options.domain.to_string(),
-        kind: kind.to_string(),
+        domain: options.domain,
+        kind,
         n_vertices: mesh.n_vertices(),
         n_faces: mesh.n_faces(),
         welded_vertices: welded.merged_vertices,
@@ -742,5 +752,5 @@ pub(super) fn finish(mesh: &TriMesh, s: Searched, options: &ParamOptions, progre
         }
         None => Vec::new(),
     };
-    Ok(CapMap { plane: plane_all, cap: cap_all, bottom_faces, report })
+    Ok(CapMap { plane: plane_all, cap: cap_all, bottom_faces, kind: report.kind, report })
 }

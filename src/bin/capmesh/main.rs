@@ -221,7 +221,7 @@ fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
             );
         }
     }
-    if r.domain == "adaptive" && r.area_distortion.mean_abs > POOR_AREA_DISTORTION {
+    if r.domain == Domain::Adaptive && r.area_distortion.mean_abs > POOR_AREA_DISTORTION {
         eprintln!(
             "warning: {}: mean |d_area| = {:.3} is far from area preserving (fold repair moved a vertex by {:.0}% of the disk radius); \
              try --puncture-end bottom or top, another --smoothing or --lambda, and check the report's untangle and smoothing_trials",

@@ -135,7 +135,7 @@ fn csv_line(row: &Row) -> String {
     let file = quote(&row.file.display().to_string());
     match &row.result {
         Ok((faces, r)) => {
-            let kind = if r.param.kind == SurfaceKind::OpenDisk.to_string() { "open" } else { "closed" };
+            let kind = if r.param.kind == SurfaceKind::OpenDisk { "open" } else { "closed" };
             let [s1, s2, s3] = r.singular_values;
             // The composition factor a closed surface was mapped with (another than asked
             // when it fell back, see `cap::lambda_fallback`).
