@@ -45,6 +45,7 @@ pub mod omt;
 pub mod openmesh;
 mod pool;
 pub mod progress;
+pub mod refine;
 pub mod remesh;
 
 // The entry points and their options and reports, flat at the root.

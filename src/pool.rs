@@ -5,7 +5,7 @@
 //! of a few thousand vertices). Started from a thread outside the pool, each loop is sent to
 //! the pool and the caller sleeps until it is done, a round trip through the scheduler; from
 //! a worker thread it is split in place and the other workers steal from it. So the library's
-//! entry points ([`crate::parameterize`], [`crate::remesh`], [`crate::harmonics::analyze`])
+//! entry points ([`crate::parameterize`], [`crate::remesh()`], [`crate::harmonics::analyze`])
 //! run on a worker thread, which makes the CLI about 10-15% faster on the small and mid-size
 //! shared meshes (the largest are unchanged).
 //!

@@ -176,7 +176,7 @@ fn steps_with_the_last_factorization_reach_the_masses_with_fewer_factorizations(
 
 #[test]
 fn predicted_warm_start_saves_newton_steps_and_reaches_the_same_masses() {
-    use capmesh::cap::planar_transport::PlanarTransport;
+    use capmesh::omt::planar_transport::PlanarTransport;
     let disk = sites(1500, 1.0, 41);
     let on_boundary: Vec<bool> = (0..disk.len()).map(|i| i < 24).collect();
     let target = targets(disk.len(), 9);

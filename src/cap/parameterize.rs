@@ -5,18 +5,18 @@
 //! `h_r` on the disk of radius `r` with the stereographic density; `r*` minimises the
 //! area-normalised mean of `|mu|^2` of `(h_r o r g)^-1` (Eq. 12) by Brent's method over `Z*`
 //! in `[-0.995, 0.995]` (closed surfaces: run in the variable `atanh(Z*)`, tolerance on
-//! `Z*`; large meshes: on a coarse level of transport sites, [`super::coarse_level`], with
+//! `Z*`; large meshes: on a coarse level of transport sites, [`crate::omt::coarse_level`], with
 //! only `r*` solved at full resolution); then the inverse stereographic projection.
 
-use super::area_refine::{refine_areas, AreaRefineReport, RefineOptions};
+use crate::refine::area_refine::{refine_areas, AreaRefineReport, RefineOptions};
 use super::brent;
-use super::coarse_level::CoarseLevel;
+use crate::omt::coarse_level::CoarseLevel;
 use super::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
 use super::lambda_fallback::{is_closed, is_precision_failure, next_lambda, LambdaFallback, DEFAULT_LAMBDA_FALLBACKS, POOR_MAP_AREA_DISTORTION};
-use super::planar_transport::{PlanarTransport, TransportMap};
+use crate::omt::planar_transport::{PlanarTransport, TransportMap};
 pub use super::puncture_end::{PunctureEnd, PunctureTrial};
-use super::regularize::{regularise, Smoothing, SmoothingTrial, PUNCTURE_HELD_RINGS};
-use super::untangle::UntangleReport;
+use crate::refine::regularize::{regularise, Smoothing, SmoothingTrial, PUNCTURE_HELD_RINGS};
+use crate::refine::untangle::UntangleReport;
 use super::stereographic::{inverse_stereographic, radius_of_z_star, z_star_of_radius};
 use crate::error::Error;
 use crate::flatten::closed::{composite_disk_map, flatten_closed, ClosedFlattenOptions, ClosedFlattenReport};
@@ -42,7 +42,7 @@ pub const MASS_TOLERANCE: f64 = 1e-5;
 
 /// Relative L1 mass error at which the final full-resolution transport stops (the map at
 /// `r*` after a coarse radius search, and the fixed domains' maps): a 0.1% mass error, the
-/// level below which the area refinement stops too ([`super::area_refine::GOOD_ENOUGH`]),
+/// level below which the area refinement stops too ([`crate::refine::area_refine::GOOD_ENOUGH`]),
 /// since the regularisation and the face-level refinement that follow move the vertices far
 /// more. Newton converges quadratically there, so this saves the last step whenever the one
 /// before it lands below `1e-3`, with mean `|d_area|` and `|d_angle|` within 1% of
@@ -71,7 +71,7 @@ pub struct ParamOptions {
     /// `|d_area|` goes from 0.013 to 0.40. Default [`MASS_TOLERANCE`] (`1e-5`).
     pub search_tolerance: f64,
     /// Transport sites of the radius search. A mesh of `n` vertices searches on a coarse
-    /// level of at most [`search_level_sites`] sites (see [`super::coarse_level`]:
+    /// level of at most [`search_level_sites`] sites (see [`crate::omt::coarse_level`]:
     /// `max(search_sites, n / SEARCH_RATIO)` when that is less than half the vertices; a
     /// closed surface also at most a quarter of its vertices, [`SMALL_SEARCH_RATIO`]) and
     /// solves the full transport problem at `r*` only; 0 always searches at full resolution
@@ -89,13 +89,13 @@ pub struct ParamOptions {
     /// ([`crate::flatten::stretch_energy::StretchOptions::factored_iterations`]). Default
     /// [`DEFAULT_OPEN_FACTORED_ITERATIONS`].
     pub open_factored_iterations: usize,
-    /// Regularisation of the final centroid map (see [`super::regularize`]);
+    /// Regularisation of the final centroid map (see [`crate::refine::regularize`]);
     /// `Smoothing::Fixed(0.0)` is the paper's plain centroid map. Default [`Smoothing::Auto`].
     pub smoothing: Smoothing,
     /// Closed-surface flattening options (lambda, puncture, stretch energy).
     pub closed: ClosedFlattenOptions,
     /// Gauss-Seidel sweeps of the face-level area refinement after transport (see
-    /// [`super::area_refine`]); 0 is the paper's map. Default [`DEFAULT_AREA_REFINEMENT`].
+    /// [`crate::refine::area_refine`]); 0 is the paper's map. Default [`DEFAULT_AREA_REFINEMENT`].
     pub area_refinement: usize,
     /// Which end of a closed surface's principal axis is punctured. Default
     /// [`PunctureEnd::Best`].
@@ -197,10 +197,10 @@ pub fn search_level_sites(n: usize, search_sites: usize, closed: bool) -> Option
 }
 
 /// Sweeps of the area refinement by default (over-relaxed, see
-/// [`super::area_refine::RefineOptions`]). On the shared closed meshes (1.8k to 48k vertices)
+/// [`crate::refine::area_refine::RefineOptions`]). On the shared closed meshes (1.8k to 48k vertices)
 /// the centroid map leaves a mean `|d_area|` of 0.2 to 0.5 after fold repair; 30 sweeps bring
 /// it below 0.2 (README).
-pub const DEFAULT_AREA_REFINEMENT: usize = super::area_refine::DEFAULT_SWEEPS;
+pub const DEFAULT_AREA_REFINEMENT: usize = crate::refine::area_refine::DEFAULT_SWEEPS;
 
 /// Initial flattening of open surfaces.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -284,9 +284,9 @@ pub struct ParamReport {
     pub smoothing_kappa: f64,
     /// Every regularisation tried, with its measured area distortion.
     pub smoothing_trials: Vec<SmoothingTrial>,
-    /// The repair of folded faces after transport (see [`super::untangle`]).
+    /// The repair of folded faces after transport (see [`crate::refine::untangle`]).
     pub untangle: UntangleReport,
-    /// The face-level area refinement (see [`super::area_refine`]).
+    /// The face-level area refinement (see [`crate::refine::area_refine`]).
     pub area_refinement: AreaRefineReport,
     /// Newton iterations over all full-resolution transport solves.
     pub newton_iterations: usize,

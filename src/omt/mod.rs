@@ -4,8 +4,10 @@
 //! exact density integrals ([`density`]) and a damped Newton driver ([`newton`]).
 
 pub mod cells;
+pub mod coarse_level;
 pub mod density;
 pub mod newton;
+pub mod planar_transport;
 pub mod triangulation;
 
 pub use cells::CellIntegrals;

@@ -20,7 +20,7 @@
 //! of the flips: at the first full step 34809 of the 53054 sites have no cell at all (checked
 //! with qhull on the lifted points), so the damping is inherent. Three starts were measured
 //! and dropped: the coarse level's weights interpolated to every site (sites become
-//! redundant even at 1/8 of them, see [`crate::cap::coarse_level`]); weights rebuilt from the
+//! redundant even at 1/8 of them, see [`crate::omt::coarse_level`]); weights rebuilt from the
 //! coarse centroid map prolonged to every site, through the Legendre dual
 //! `h_i = (|p_i|^2 - w_i) / 2` whose gradient at a site is its cell's centroid (least squares
 //! `h_j - h_i = (p_j - p_i) . (c_i + c_j) / 2` on the mesh edges; sites redundant on the face,

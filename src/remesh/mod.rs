@@ -6,7 +6,7 @@ pub mod grid;
 pub mod locate;
 pub mod pullback;
 
-use crate::cap::area_refine::AreaRefineReport;
+use crate::refine::area_refine::AreaRefineReport;
 use crate::cap::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
 use crate::cap::stereographic;

@@ -295,7 +295,7 @@ fn run(cli: Cli) -> Result<(), String> {
                     equalize_seconds: f64,
                     metrics_seconds: f64,
                     write_seconds: f64,
-                    area_equalization: capmesh::cap::area_refine::AreaRefineReport,
+                    area_equalization: capmesh::refine::area_refine::AreaRefineReport,
                     parameterization: &'a capmesh::ParamReport,
                 }
                 let q = &rep.quality;

@@ -11,7 +11,7 @@
 //! Large systems are solved by conjugate gradients from the centroids
 //! ([`ITERATIVE_UNKNOWNS`]), the others (and any whose gradients stall) by sparse Cholesky.
 
-use super::planar_transport::TransportMap;
+use crate::omt::planar_transport::TransportMap;
 use super::untangle::{untangle, UntangleReport};
 use crate::linalg::{jacobi_cg2, CotanWeights, SolveError, SpdSolver};
 use faer::sparse::SparseColMat;

@@ -13,7 +13,7 @@
 //! (fewer on closed surfaces, whose search jumps between far radii) for a flip pass and an
 //! integration per try; `Z*` moves within the search's tolerance.
 
-use crate::omt::{CellIntegrals, OmtError, OtOptions, OtReport, OtSolver, RadialDensity};
+use super::{CellIntegrals, OmtError, OtOptions, OtReport, OtSolver, RadialDensity};
 use crate::progress::Progress;
 
 /// The transport map at one radius.
