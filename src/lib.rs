@@ -41,6 +41,7 @@ pub mod linalg;
 pub mod mesh;
 pub mod metrics;
 pub mod omt;
+pub mod param;
 #[cfg(feature = "openmesh")]
 pub mod openmesh;
 mod pool;
@@ -49,10 +50,11 @@ pub mod refine;
 pub mod remesh;
 
 // The entry points and their options and reports, flat at the root.
-pub use cap::{parameterize, CapMap, Domain, ParamOptions, ParamReport};
+pub use cap::{CapMap, Domain};
 pub use error::{Error, Result};
 pub use harmonics::{analyze, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
 pub use io::{read_mesh, write_mesh, ReadError, WriteError};
 pub use mesh::TriMesh;
+pub use param::{parameterize, ParamOptions, ParamReport};
 pub use progress::{NoProgress, Progress, Stage};
 pub use remesh::{remesh, CapGrid, RemeshOptions, RemeshReport};

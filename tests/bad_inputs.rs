@@ -817,7 +817,7 @@ fn huge_announced_counts_fail_fast() {
 /// past the map).
 #[test]
 fn in_memory_meshes_with_bad_faces_are_refused_by_the_pipeline() {
-    use capmesh::cap::{parameterize, ParamOptions};
+    use capmesh::param::{parameterize, ParamOptions};
     use capmesh::remesh::{remesh, RemeshOptions};
     use capmesh::{Error, NoProgress};
     let cap = spherical_cap(0.3, 4, 12);

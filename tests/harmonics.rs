@@ -483,9 +483,9 @@ fn bad_inputs_are_errors() {
 
 fn reconstruction_on(name: &str, bound_at_15: f64) {
     let mesh = capmesh::io::read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
-    let map = capmesh::cap::parameterize(
+    let map = capmesh::param::parameterize(
         &mesh,
-        &capmesh::cap::ParamOptions::default(),
+        &capmesh::param::ParamOptions::default(),
         &capmesh::progress::NoProgress,
     )
     .unwrap_or_else(|e| panic!("{name}: {e}"));

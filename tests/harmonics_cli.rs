@@ -245,7 +245,7 @@ fn shape_analyses_a_cohort_and_names_the_bad_mesh() {
 
     // The aspect_ratio column is the paper's least-squares ratio, the other the exact ellipsoid.
     let helmet = capmesh::io::read_mesh(&data("open_meg_helmet_babysquid_mne.obj.gz")).unwrap();
-    let map = capmesh::cap::parameterize(&helmet, &Default::default(), &capmesh::NoProgress).unwrap();
+    let map = capmesh::param::parameterize(&helmet, &Default::default(), &capmesh::NoProgress).unwrap();
     let z_star = map.report.z_star.unwrap();
     let paper = aspect_ratio(&map.cap, &helmet.vertices, z_star).unwrap().ratio;
     let exact = order_one_ellipsoid(&fit(&map.cap, &helmet.vertices, z_star, 1).unwrap()).unwrap().aspect_ratio();

@@ -3,8 +3,9 @@
 //! |d_angle| is no larger than the hemisphere baseline's (paper Table 1). The transport's
 //! finer backtracking of its logarithmic steps saves Newton steps on the hand.
 
-use capmesh::cap::parameterize::MASS_TOLERANCE;
-use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::param::MASS_TOLERANCE;
+use capmesh::cap::Domain;
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::progress::NoProgress;
 use std::path::PathBuf;

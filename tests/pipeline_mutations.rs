@@ -3,7 +3,7 @@
 //! coordinates, dropped faces) either map or fail with an error; nothing panics, and every map that
 //! succeeds has finite cap positions on the unit sphere.
 
-use capmesh::cap::{parameterize, ParamOptions};
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::mesh::shapes::{icosphere, spherical_cap};
 use capmesh::progress::NoProgress;
 use capmesh::TriMesh;

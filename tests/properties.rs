@@ -4,7 +4,8 @@
 //! input's orientation does not matter), the remeshing metrics scale as areas and lengths do,
 //! and the stereographic projection and its inverse are each other's inverse.
 
-use capmesh::cap::{inverse_stereographic, parameterize, stereographic, ParamOptions};
+use capmesh::cap::{inverse_stereographic, stereographic};
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::metrics::remesh_metrics;
 use capmesh::progress::NoProgress;

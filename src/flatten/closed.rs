@@ -29,7 +29,7 @@ pub struct ClosedFlattenOptions {
     /// Stretch energy options.
     pub stretch: StretchOptions,
     /// Solve the two coordinates' right-hand sides of the large systems on separate threads
-    /// ([`SpdSolver::set_parallel_columns`]). Default `true`; [`crate::cap::PunctureEnd::Best`]
+    /// ([`SpdSolver::set_parallel_columns`]). Default `true`; [`crate::param::PunctureEnd::Best`]
     /// sets it to `false` while both ends flatten at once.
     pub parallel_solves: bool,
 }
@@ -162,7 +162,7 @@ const DISSECTION_OFFER_FACTORIZATIONS: usize = 8;
 /// The offer is made only when AMD's factor has more than this many entries per
 /// `n log2 n` unknowns: the dissection's factor had 4.5-4.9 on every mesh measured, AMD's
 /// 3.1 to 5.65 (the 164k ellipsoid, numbered by icosphere subdivision). Below it the
-/// dissection's analysis (two of them at once for [`crate::cap::PunctureEnd::Best`]) only
+/// dissection's analysis (two of them at once for [`crate::param::PunctureEnd::Best`]) only
 /// costs time.
 const DISSECTION_FILL: f64 = 4.5;
 

@@ -201,7 +201,7 @@ impl SpdSolver {
     /// Whether [`SpdSolver::solve_in_place`] solves the right-hand sides of a large system on
     /// separate threads (from 20 000 unknowns; the default) or all in one pass over the
     /// factor. One pass is the better when the other core is busy with another such solver:
-    /// [`crate::cap::PunctureEnd::Best`] flattens both ends at once, and there the two
+    /// [`crate::param::PunctureEnd::Best`] flattens both ends at once, and there the two
     /// streams of each solve only compete for the memory bandwidth.
     pub fn set_parallel_columns(&mut self, parallel: bool) {
         self.sequential_columns = !parallel;

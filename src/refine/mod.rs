@@ -1,5 +1,5 @@
 //! Repair and improvement of a planar map after the transport, used by the parameterization
-//! (`crate::param`) and the remeshing ([`mod@crate::remesh`]): fold repair ([`untangle`], with
+//! ([`crate::param`]) and the remeshing ([`mod@crate::remesh`]): fold repair ([`untangle`], with
 //! [`kernel_untangle`] and [`boundary_polygon`]), the regularisation of the centroid map
 //! ([`regularize`]) and the face-level area refinement ([`area_refine`]).
 

@@ -7,7 +7,7 @@ pub mod locate;
 pub mod pullback;
 
 use crate::refine::area_refine::AreaRefineReport;
-use crate::cap::{parameterize, ParamOptions, ParamReport};
+use crate::param::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
 use crate::cap::stereographic;
 use crate::mesh::topology::is_boundary_vertex;

@@ -15,7 +15,8 @@ mod harmonics_cmd;
 mod map_args;
 mod shape_cmd;
 
-use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::cap::Domain;
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io;
 use capmesh::remesh::{remesh, CapGrid, RemeshOptions};
 use capmesh::mesh;
@@ -203,12 +204,12 @@ pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(
 /// Mean |d_area| above which the map is reported as poor on stderr (the bundled meshes map
 /// at 0.008-0.13; a failed fold repair gives 0.4 and more); closed surfaces are mapped again
 /// with a larger lambda above it first.
-const POOR_AREA_DISTORTION: f64 = capmesh::cap::lambda_fallback::POOR_MAP_AREA_DISTORTION;
+const POOR_AREA_DISTORTION: f64 = capmesh::param::POOR_MAP_AREA_DISTORTION;
 
 /// Say on stderr when a map is fold-free but far from area preserving, rather than let a poor
 /// result pass silently, and when a closed surface needed a larger `lambda` than asked.
 fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
-    if let capmesh::cap::parameterize::FlattenReport::Closed(used) = &r.flatten {
+    if let capmesh::param::FlattenReport::Closed(used) = &r.flatten {
         for tried in &r.lambda_fallbacks {
             eprintln!("warning: {}: not kept: lambda = {}: {}", input.display(), tried.lambda, tried.reason);
         }

@@ -20,34 +20,15 @@
 //! [`super::ParamReport::lambda_fallbacks`]. Meshes that map well at the first `lambda` (all
 //! the shared ones) pay nothing.
 
-use super::parameterize::ParamOptions;
+use super::options::ParamOptions;
 use crate::error::Error;
-use crate::mesh::{repair, validate, SurfaceKind, TriMesh};
 use crate::omt::OmtError;
-
-/// The default [`ParamOptions::closed_lambda_fallbacks`]: each tried in turn, above the
-/// `lambda` that failed. 0.5 and 0.8 rescued the stretched meshes above (the bunny
-/// stretched 10 times at 0.5, 50 times at 1); 1 (the stretch
-/// energy map alone) is the last resort because the fit of the map's angles is worst there.
-pub const DEFAULT_LAMBDA_FALLBACKS: [f64; 3] = [0.5, 0.8, 1.0];
 
 /// Mean `|d_area|` above which a closed surface's map counts as poor and the next `lambda`
 /// is tried (the command line warns above it too). The shared meshes map at 0.008-0.13; the
 /// bunny stretched 50 times along its axis mapped at 2.48 with `lambda` 0.2, 1.94 with 0.5,
 /// stalled at 0.8 and mapped at 0.17 with 1.
 pub const POOR_MAP_AREA_DISTORTION: f64 = 0.3;
-
-/// One `lambda` tried for a closed surface whose map was not kept: its transport failed, or
-/// its map was poor and a later one was better.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct LambdaFallback {
-    /// The composition factor tried.
-    pub lambda: f64,
-    /// Why it was not kept (the transport's error, or the map's distortion).
-    pub reason: String,
-    /// The map's mean `|d_area|` when there was a map.
-    pub mean_abs_area_distortion: Option<f64>,
-}
 
 /// Whether `error` is the transport losing precision on a too compressive initial map (the
 /// failure a larger `lambda` can cure), as opposed to bad input or a cancellation.
@@ -58,13 +39,6 @@ pub(super) fn is_precision_failure(error: &Error) -> bool {
 /// The next `lambda` to try after `failed`, if any.
 pub(super) fn next_lambda(options: &ParamOptions, failed: f64) -> Option<f64> {
     options.closed_lambda_fallbacks.iter().copied().filter(|&l| l > failed && l <= 1.0).reduce(f64::min)
-}
-
-/// Whether `mesh`, welded as the parameterization welds it, is a closed genus-0 surface (the
-/// only kind whose initial map `closed.lambda` shapes).
-pub(super) fn is_closed(mesh: &TriMesh, options: &ParamOptions) -> bool {
-    let welded = repair::weld_coincident(mesh, options.weld_tolerance * mesh.bounding_box_diagonal());
-    matches!(validate(&welded.mesh), Ok((SurfaceKind::ClosedSphere, _)))
 }
 
 #[cfg(test)]
