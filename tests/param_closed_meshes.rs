@@ -3,17 +3,16 @@
 //! area than the hemisphere baseline; a sphere and a dome give Z* near -1 (only the punctured
 //! quad maps to the bottom); reversed winding gives the same map.
 
+mod common;
+
+use common::data;
+
 use capmesh::cap::{CapMap, Domain};
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::mesh::shapes::{icosphere, spherical_cap};
 use capmesh::mesh::{Topology, TriMesh};
 use capmesh::progress::NoProgress;
-use std::path::PathBuf;
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
-}
 
 fn adaptive(mesh: &TriMesh, name: &str) -> CapMap {
     parameterize(mesh, &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"))
@@ -170,7 +169,7 @@ fn reversed_winding_gives_the_same_map() {
 #[test]
 fn plain_centroid_map_of_a_punctured_surface_stays_area_preserving() {
     use capmesh::param::PunctureEnd;
-use capmesh::refine::Smoothing;
+    use capmesh::refine::Smoothing;
     let name = "closed_brain12k_choi.obj.gz";
     let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
     let options = ParamOptions { smoothing: Smoothing::Fixed(0.0), area_refinement: 0, puncture_end: PunctureEnd::Bottom, ..Default::default() };
@@ -190,7 +189,7 @@ use capmesh::refine::Smoothing;
 #[test]
 fn smoothing_leaves_the_puncture_neighbourhood_alone() {
     use capmesh::param::PunctureEnd;
-use capmesh::refine::Smoothing;
+    use capmesh::refine::Smoothing;
     let mut mesh = icosphere(6);
     for p in &mut mesh.vertices {
         let r = 1.0 + 0.08 * (5.0 * p[0]).sin() * (4.0 * p[1]).sin() * (3.0 * p[2]).sin();

@@ -1,14 +1,13 @@
 //! The radius search on a coarse level (cap::coarse_level) finds a cap as good as the search
 //! at full resolution, with a fraction of the full-resolution Newton iterations.
 
+mod common;
+
+use common::data;
+
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::progress::NoProgress;
-use std::path::PathBuf;
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
-}
 
 /// Open surfaces' full-resolution search takes a dozen solves; the coarse one must do with
 /// under half their Newton iterations. A closed surface's search starts at its bound and ends

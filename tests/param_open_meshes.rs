@@ -3,16 +3,15 @@
 //! |d_angle| is no larger than the hemisphere baseline's (paper Table 1). The transport's
 //! finer backtracking of its logarithmic steps saves Newton steps on the hand.
 
+mod common;
+
+use common::data;
+
 use capmesh::param::MASS_TOLERANCE;
 use capmesh::cap::Domain;
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::progress::NoProgress;
-use std::path::PathBuf;
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
-}
 
 fn check(name: &str) {
     let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
