@@ -3,6 +3,7 @@
 //! [`kernel_untangle`] and [`boundary_polygon`]), the regularisation of the centroid map
 //! ([`regularize`]) and the face-level area refinement ([`area_refine`]).
 
+mod area_local;
 pub mod area_refine;
 pub mod boundary_polygon;
 pub mod kernel_untangle;
