@@ -5,7 +5,7 @@
 //! `cargo run --release --example lambda_study > benchmarks/results/lambda_study.json`, then
 //! `benchmarks/.venv/bin/python benchmarks/plot_lambda_study.py` writes the table and the plot.
 
-use capmesh::cap::{parameterize, ParamOptions};
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::progress::NoProgress;
 use std::path::Path;
@@ -26,7 +26,7 @@ fn main() {
             }
         };
         for lambda in LAMBDAS {
-            for refinement in [0, capmesh::cap::parameterize::DEFAULT_AREA_REFINEMENT] {
+            for refinement in [0, capmesh::param::DEFAULT_AREA_REFINEMENT] {
                 let mut options = ParamOptions::default();
                 options.closed.lambda = lambda;
                 options.area_refinement = refinement;

@@ -5,7 +5,8 @@
 //!
 //! `cargo run --release --example param_table > benchmarks/results/param_table.md`
 
-use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::cap::Domain;
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::progress::NoProgress;
 use std::path::Path;

@@ -4,7 +4,7 @@
 #      installed with apt-get when missing (needs root, as on CI);
 #   2. fetch_meshlab_sdk.sh: MeshLab 2025.07 headers (Debian source package) and the pymeshlab
 #      wheel with libmeshlab-common.so, in meshlab-plugin/.venv;
-#   3. capmesh as a static library with its C ABI: cargo build --release --features capi;
+#   3. capmesh as a static library with its C ABI: cargo build --release --no-default-features --features capi;
 #   4. CMake.
 # Environment: CARGO_TARGET_DIR (default <repo>/target), CARGO_BUILD_JOBS, BUILD_JOBS (make -j).
 set -euo pipefail
@@ -27,7 +27,7 @@ bash "$HERE/fetch_meshlab_sdk.sh"
 PYMESHLAB_LIB="$("$HERE/.venv/bin/python" -c 'import os, pymeshlab; print(os.path.join(os.path.dirname(pymeshlab.__file__), "lib"))')"
 
 TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
-( cd "$ROOT" && cargo build --release --features capi --lib )
+( cd "$ROOT" && cargo build --release --no-default-features --features capi --lib )
 CAPMESH_LIB="$TARGET_DIR/release/libcapmesh.a"
 [ -f "$CAPMESH_LIB" ] || { echo "build.sh: $CAPMESH_LIB was not built" >&2; exit 1; }
 

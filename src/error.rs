@@ -39,6 +39,10 @@ pub enum Error {
     /// Cancelled through the progress callback.
     #[error(transparent)]
     Cancelled(#[from] Cancelled),
+    /// A bug in capmesh: an invariant the code relies on does not hold. Please report it with
+    /// the input that caused it.
+    #[error("internal error (a bug in capmesh, please report it): {0}")]
+    Internal(String),
 }
 
 /// Shorthand for results with [`Error`].

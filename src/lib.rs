@@ -17,9 +17,9 @@
 //! ```
 //!
 //! ```no_run
-//! use capmesh::{io, cap, progress::NoProgress};
-//! let mesh = io::read_mesh(std::path::Path::new("tests/data/open_face_choi.obj.gz"))?;
-//! let map = cap::parameterize(&mesh, &cap::ParamOptions::default(), &NoProgress)?;
+//! use capmesh::{parameterize, read_mesh, NoProgress, ParamOptions};
+//! let mesh = read_mesh(std::path::Path::new("tests/data/open_face_choi.obj.gz"))?;
+//! let map = parameterize(&mesh, &ParamOptions::default(), &NoProgress)?;
 //! println!("Z* = {:?}, mean |d_area| = {}", map.report.z_star, map.report.area_distortion.mean_abs);
 //! # Ok::<(), capmesh::Error>(())
 //! ```
@@ -41,13 +41,20 @@ pub mod linalg;
 pub mod mesh;
 pub mod metrics;
 pub mod omt;
+pub mod param;
 #[cfg(feature = "openmesh")]
 pub mod openmesh;
 mod pool;
 pub mod progress;
+pub mod refine;
 pub mod remesh;
 
-pub use cap::{parameterize, CapMap, Domain, ParamOptions, ParamReport};
+// The entry points and their options and reports, flat at the root.
+pub use cap::{CapMap, Domain};
 pub use error::{Error, Result};
+pub use harmonics::{analyze, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
+pub use io::{read_mesh, write_mesh, ReadError, WriteError};
 pub use mesh::TriMesh;
+pub use param::{parameterize, ParamOptions, ParamReport};
 pub use progress::{NoProgress, Progress, Stage};
+pub use remesh::{remesh, CapGrid, RemeshOptions, RemeshReport};

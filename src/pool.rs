@@ -5,10 +5,9 @@
 //! of a few thousand vertices). Started from a thread outside the pool, each loop is sent to
 //! the pool and the caller sleeps until it is done, a round trip through the scheduler; from
 //! a worker thread it is split in place and the other workers steal from it. So the library's
-//! entry points ([`crate::parameterize`], [`crate::remesh`], [`crate::harmonics::analyze`])
-//! run on a worker thread. Measured on the MEG helmet (2.2k vertices, CLI, medians of 20
-//! alternating runs, 2026-12-01): 0.110 -> 0.091 s; bunny 0.133 -> 0.120 s, left ventricle
-//! 0.205 -> 0.175 s, hand 2.49 -> 2.26 s (8 runs each); the 164k-vertex ellipsoid unchanged.
+//! entry points ([`crate::parameterize`], [`crate::remesh()`], [`crate::harmonics::analyze`])
+//! run on a worker thread, which makes the CLI about 10-15% faster on the small and mid-size
+//! shared meshes (the largest are unchanged).
 //!
 //! A [`Progress`] may have to be called on the thread that started the work (MeshLab's
 //! callback drives a Qt progress bar), so the reports are relayed: the worker sends each

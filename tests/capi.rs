@@ -324,7 +324,7 @@ fn refinement_equalization_and_puncture_end_options_are_passed_through() {
     let mut o = capmesh_v1_remesh_options_default();
     assert_eq!(
         (o.param.area_refinement, o.param.puncture_end, o.area_equalization),
-        (capmesh::cap::parameterize::DEFAULT_AREA_REFINEMENT as u32, CAPMESH_V1_PUNCTURE_BEST, 30)
+        (capmesh::param::DEFAULT_AREA_REFINEMENT as u32, CAPMESH_V1_PUNCTURE_BEST, 30)
     );
     o.faces = 1000;
     o.param.area_refinement = 0;

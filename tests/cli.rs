@@ -2,26 +2,20 @@
 //! with the documented keys; `check` describes good meshes and refuses bad ones with a
 //! message naming the problem; the input is never overwritten.
 
+mod common;
+
+use common::{data, TempDir};
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
-}
 
 fn capmesh() -> Command {
     Command::new(env!("CARGO_BIN_EXE_capmesh"))
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("capmesh-cli-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 #[test]
 fn param_writes_cap_mesh_and_report() {
-    let dir = temp_dir("param");
+    let dir = TempDir::new("cli-param");
     let out = dir.join("helmet_cap.ply");
     let report = dir.join("report.json");
     let input = data("open_meg_helmet_babysquid_mne.obj.gz");
@@ -67,7 +61,8 @@ fn helmet_copy(dir: &Path) -> (PathBuf, Vec<u8>) {
 
 #[test]
 fn param_refuses_to_overwrite_its_input() {
-    let (copy, before) = helmet_copy(&temp_dir("overwrite"));
+    let dir = TempDir::new("cli-overwrite");
+    let (copy, before) = helmet_copy(&dir);
     let out = capmesh().args(["param", "--quiet"]).arg(&copy).arg("-o").arg(&copy).output().unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("refusing to overwrite"));
@@ -79,7 +74,7 @@ fn param_refuses_to_overwrite_its_input() {
 #[cfg(unix)]
 #[test]
 fn remesh_refuses_links_to_its_input() {
-    let dir = temp_dir("links");
+    let dir = TempDir::new("cli-links");
     let (input, before) = helmet_copy(&dir);
     let soft = dir.join("soft.obj.gz");
     let hard = dir.join("hard.json");
@@ -107,11 +102,12 @@ fn check_describes_an_open_disk() {
 
 #[test]
 fn check_and_param_refuse_genus_two() {
+    let dir = TempDir::new("cli-g2");
     for sub in ["check", "param"] {
         let mut cmd = capmesh();
         cmd.arg(sub).arg(data("bad_genus2_bird_skull_choi.obj.gz"));
         if sub == "param" {
-            cmd.args(["--quiet", "-o"]).arg(temp_dir("g2").join("x.obj"));
+            cmd.args(["--quiet", "-o"]).arg(dir.join("x.obj"));
         }
         let out = cmd.output().unwrap();
         assert!(!out.status.success(), "{sub} accepted a genus-2 surface");
@@ -122,7 +118,7 @@ fn check_and_param_refuse_genus_two() {
 
 #[test]
 fn param_refuses_an_annulus_with_a_clear_message() {
-    let dir = temp_dir("annulus");
+    let dir = TempDir::new("cli-annulus");
     let path = dir.join("annulus.obj");
     capmesh::io::write_mesh(&path, &capmesh::mesh::shapes::annulus(0.5, 1.0, 4, 24)).unwrap();
     let out = capmesh().args(["param", "--quiet"]).arg(&path).arg("-o").arg(dir.join("o.obj")).output().unwrap();
@@ -133,7 +129,7 @@ fn param_refuses_an_annulus_with_a_clear_message() {
 
 #[test]
 fn truncated_file_is_refused_with_its_name() {
-    let dir = temp_dir("trunc");
+    let dir = TempDir::new("cli-trunc");
     let path = dir.join("cut.ply");
     let bytes = capmesh::io::write_mesh_to_bytes(&capmesh::mesh::shapes::grid_disk(6), capmesh::io::Format::Ply).unwrap();
     std::fs::write(&path, &bytes[..bytes.len() * 2 / 3]).unwrap();
@@ -148,7 +144,7 @@ fn truncated_file_is_refused_with_its_name() {
 /// the CLI says so on stderr; the default map of the same mesh does not warn.
 #[test]
 fn poor_maps_are_reported_on_stderr() {
-    let dir = temp_dir("poor_map");
+    let dir = TempDir::new("cli-poor_map");
     let input = data("closed_bunny_npm.obj.gz");
     let poor = capmesh()
         .args(["--quiet", "param"])
@@ -180,7 +176,7 @@ fn bunny_variant(dir: &Path, name: &str, change: impl FnOnce(&mut capmesh::TriMe
 /// `--no-lambda-fallback` gives the transport's error instead, naming the remedy.
 #[test]
 fn elongated_closed_surfaces_fall_back_to_a_larger_lambda() {
-    let dir = temp_dir("lambda_fallback");
+    let dir = TempDir::new("cli-lambda_fallback");
     let input = bunny_variant(&dir, "bunny_x10.obj", |mesh| mesh.vertices.iter_mut().for_each(|p| p[0] *= 10.0));
     let report = dir.join("report.json");
     let out = capmesh().args(["--quiet", "param"]).arg(&input).arg("-o").arg(dir.join("cap.obj")).arg("--report").arg(&report).output().unwrap();
@@ -202,7 +198,7 @@ fn elongated_closed_surfaces_fall_back_to_a_larger_lambda() {
 /// than pass them silently.
 #[test]
 fn zero_area_faces_in_a_remesh_are_reported() {
-    let dir = temp_dir("zero_area");
+    let dir = TempDir::new("cli-zero_area");
     let input = bunny_variant(&dir, "bunny_hole.obj", |mesh| {
         mesh.faces.remove(0);
     });
@@ -243,7 +239,7 @@ fn closed_standard_output_ends_quietly() {
 #[test]
 fn huge_cap_meshes_are_refused_before_any_work() {
     // An accidental face count used to run until memory ran out.
-    let dir = temp_dir("huge");
+    let dir = TempDir::new("cli-huge");
     let input = data("open_meg_helmet_babysquid_mne.obj.gz");
     for args in [vec!["--faces", "99999999999"], vec!["--lat-long", "--rings", "100000", "--sectors", "100000"]] {
         let out = capmesh().args(["remesh", "--quiet"]).arg(&input).arg("-o").arg(dir.join("huge.ply")).args(&args).output().unwrap();
@@ -257,7 +253,7 @@ fn huge_cap_meshes_are_refused_before_any_work() {
 #[test]
 fn fixed_radii_outside_the_search_range_are_refused() {
     // radius=1000 used to give ten folded faces and mean |d_area| 0.58 without a word.
-    let dir = temp_dir("radius");
+    let dir = TempDir::new("cli-radius");
     let input = data("open_meg_helmet_babysquid_mne.obj.gz");
     for r in ["1000", "0.001", "1e6"] {
         let out = capmesh().args(["param", "--quiet"]).arg(&input).arg("-o").arg(dir.join("r.ply")).arg("--domain").arg(format!("radius={r}")).output().unwrap();
@@ -273,7 +269,7 @@ fn fixed_radii_outside_the_search_range_are_refused() {
 /// `map_args.rs`): they reach the library (the report says so) and bad values are refused.
 #[test]
 fn remesh_takes_the_parameterization_options() {
-    let dir = temp_dir("remesh_options");
+    let dir = TempDir::new("cli-remesh_options");
     let input = data("closed_bunny_npm.obj.gz");
     let report = dir.join("report.json");
     let run = capmesh()
@@ -305,7 +301,7 @@ fn remesh_takes_the_parameterization_options() {
 /// bytes on one, two and three threads. `--threads 0` is refused by name.
 #[test]
 fn results_do_not_depend_on_the_number_of_threads() {
-    let dir = temp_dir("threads");
+    let dir = TempDir::new("cli-threads");
     for name in ["closed_bunny_npm.obj.gz", "open_lv_endo_rabbit_chaste.obj.gz"] {
         let outputs: Vec<Vec<u8>> = ["1", "2", "3"]
             .iter()

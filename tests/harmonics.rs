@@ -2,8 +2,11 @@
 //! forms, orthonormality of the basis over the cap by quadrature, exact recovery of known
 //! combinations, falling reconstruction error on real meshes, and the order-1 aspect ratio.
 
+mod common;
+
+use common::data;
+
 use std::f64::consts::PI;
-use std::path::PathBuf;
 use std::time::Instant;
 
 use capmesh::harmonics::legendre::triangle_index;
@@ -12,10 +15,6 @@ use capmesh::harmonics::{
     normalized_legendre, order_one_ellipsoid, CapBasis, HarmonicFit, HarmonicsError,
 };
 use capmesh::mesh::shapes::{spherical_cap, spherical_cap_sectors, uv_sphere};
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
-}
 
 /// Deterministic pseudo-random numbers in [-1, 1] (xorshift64*).
 struct Rng(u64);
@@ -483,9 +482,9 @@ fn bad_inputs_are_errors() {
 
 fn reconstruction_on(name: &str, bound_at_15: f64) {
     let mesh = capmesh::io::read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
-    let map = capmesh::cap::parameterize(
+    let map = capmesh::param::parameterize(
         &mesh,
-        &capmesh::cap::ParamOptions::default(),
+        &capmesh::param::ParamOptions::default(),
         &capmesh::progress::NoProgress,
     )
     .unwrap_or_else(|e| panic!("{name}: {e}"));

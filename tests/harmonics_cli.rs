@@ -4,24 +4,17 @@
 //! one CSV row per mesh (the paper's aspect ratio in `aspect_ratio`) and fails, after writing
 //! the CSV, naming the mesh that could not be analysed.
 
+mod common;
+
+use common::{data, TempDir};
+
 use capmesh::harmonics::{aspect_ratio, basis_index, basis_len, fit, order_one_ellipsoid, HarmonicFit};
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-
-fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
-}
 
 fn capmesh() -> Command {
     Command::new(env!("CARGO_BIN_EXE_capmesh"))
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("capmesh-harmonics-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -31,7 +24,7 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 #[test]
 fn harmonics_on_the_face_writes_reconstruction_coefficients_and_report() {
     const ORDER: usize = 4;
-    let dir = temp_dir("face");
+    let dir = TempDir::new("harmonics-cli-face");
     let input = data("open_face_choi.obj.gz");
     let before = std::fs::read(&input).unwrap();
     let (out, coefficients, report, cap) =
@@ -132,7 +125,7 @@ fn harmonics_on_the_face_writes_reconstruction_coefficients_and_report() {
 
 #[test]
 fn harmonics_refuses_bad_requests_before_any_work() {
-    let dir = temp_dir("refuse");
+    let dir = TempDir::new("harmonics-cli-refuse");
     let copy = dir.join("helmet.obj.gz");
     std::fs::copy(data("open_meg_helmet_babysquid_mne.obj.gz"), &copy).unwrap();
     let before = std::fs::read(&copy).unwrap();
@@ -184,7 +177,7 @@ fn csv_fields(line: &str) -> Vec<String> {
 
 #[test]
 fn shape_analyses_a_cohort_and_names_the_bad_mesh() {
-    let dir = temp_dir("cohort");
+    let dir = TempDir::new("harmonics-cli-cohort");
     let cohort = dir.join("cohort");
     std::fs::create_dir_all(cohort.join("closed")).unwrap();
     std::fs::copy(data("open_meg_helmet_babysquid_mne.obj.gz"), cohort.join("helmet.obj.gz")).unwrap();
@@ -245,7 +238,7 @@ fn shape_analyses_a_cohort_and_names_the_bad_mesh() {
 
     // The aspect_ratio column is the paper's least-squares ratio, the other the exact ellipsoid.
     let helmet = capmesh::io::read_mesh(&data("open_meg_helmet_babysquid_mne.obj.gz")).unwrap();
-    let map = capmesh::cap::parameterize(&helmet, &Default::default(), &capmesh::NoProgress).unwrap();
+    let map = capmesh::param::parameterize(&helmet, &Default::default(), &capmesh::NoProgress).unwrap();
     let z_star = map.report.z_star.unwrap();
     let paper = aspect_ratio(&map.cap, &helmet.vertices, z_star).unwrap().ratio;
     let exact = order_one_ellipsoid(&fit(&map.cap, &helmet.vertices, z_star, 1).unwrap()).unwrap().aspect_ratio();
@@ -259,7 +252,7 @@ fn shape_analyses_a_cohort_and_names_the_bad_mesh() {
 
 #[test]
 fn shape_succeeds_on_good_meshes_and_never_overwrites_an_input() {
-    let dir = temp_dir("good");
+    let dir = TempDir::new("harmonics-cli-good");
     let copy = dir.join("helmet.obj.gz");
     std::fs::copy(data("open_meg_helmet_babysquid_mne.obj.gz"), &copy).unwrap();
     let before = std::fs::read(&copy).unwrap();
@@ -269,7 +262,7 @@ fn shape_succeeds_on_good_meshes_and_never_overwrites_an_input() {
     assert_eq!(std::fs::read(&copy).unwrap(), before);
 
     let csv = dir.join("one.csv");
-    let out = capmesh().args(["shape", "--quiet", "--jobs", "1"]).arg(&dir).arg("--csv").arg(&csv).output().unwrap();
+    let out = capmesh().args(["shape", "--quiet", "--jobs", "1"]).arg(&*dir).arg("--csv").arg(&csv).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = std::fs::read_to_string(&csv).unwrap();
     assert_eq!(text.lines().count(), 2, "{text}");

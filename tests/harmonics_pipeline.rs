@@ -81,7 +81,7 @@ fn unreferenced_vertices_keep_their_position() {
     let mut mesh = helmet();
     let stray = [1.0e3, -2.0e3, 5.0e2];
     mesh.vertices.push(stray);
-    let map = capmesh::cap::parameterize(&mesh, &Default::default(), &NoProgress).unwrap();
+    let map = capmesh::param::parameterize(&mesh, &Default::default(), &NoProgress).unwrap();
     let out = analyze_map(&mesh, &map, 3, &NoProgress).unwrap();
     assert_eq!((out.report.vertices, out.report.fitted_vertices), (2172, 2171));
     assert_eq!(out.reconstructed.vertices[2171], stray);

@@ -140,7 +140,7 @@ fn backtracking_factor_outside_the_unit_interval_is_refused() {
         assert!(err.to_string().contains("log_step_shrink"), "{err}");
     }
     // Halving, the finer default and anything between converge to the same masses.
-    for shrink in [0.5, 0.6, capmesh::omt::newton::LOG_STEP_SHRINK] {
+    for shrink in [0.5, 0.6, capmesh::omt::options::LOG_STEP_SHRINK] {
         let options = OtOptions { log_step_shrink: shrink, ..OtOptions::default() };
         let (cells, report) = OtSolver::new(&s, r, &d).unwrap().solve(&target, &options, &NoProgress).unwrap();
         assert!(report.mass_error <= options.tolerance, "shrink {shrink}: {}", report.mass_error);
@@ -161,7 +161,7 @@ fn steps_with_the_last_factorization_reach_the_masses_with_fewer_factorizations(
         OtSolver::new(&s, r, &d).unwrap().solve(&target, &options, &NoProgress).unwrap()
     };
     let (fresh_cells, fresh) = solve(0.0);
-    let (stale_cells, stale) = solve(capmesh::omt::newton::STALE_STEP_ERROR);
+    let (stale_cells, stale) = solve(capmesh::omt::options::STALE_STEP_ERROR);
     eprintln!("every step factored {fresh:?}\nwith stale steps {stale:?}");
     assert_eq!(fresh.stale_steps, 0);
     assert!(stale.stale_steps >= 1, "{stale:?}");
@@ -176,7 +176,7 @@ fn steps_with_the_last_factorization_reach_the_masses_with_fewer_factorizations(
 
 #[test]
 fn predicted_warm_start_saves_newton_steps_and_reaches_the_same_masses() {
-    use capmesh::cap::planar_transport::PlanarTransport;
+    use capmesh::omt::planar_transport::PlanarTransport;
     let disk = sites(1500, 1.0, 41);
     let on_boundary: Vec<bool> = (0..disk.len()).map(|i| i < 24).collect();
     let target = targets(disk.len(), 9);

@@ -2,7 +2,8 @@
 //! `Z >= z0` must come back as that cap, with `Z*` equal to its own height and near-zero
 //! area distortion.
 
-use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::cap::Domain;
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::mesh::shapes::{spherical_cap, spherical_cap_sectors};
 use capmesh::progress::NoProgress;
 

@@ -3,16 +3,16 @@
 //! area than the hemisphere baseline; a sphere and a dome give Z* near -1 (only the punctured
 //! quad maps to the bottom); reversed winding gives the same map.
 
-use capmesh::cap::{parameterize, CapMap, Domain, ParamOptions};
+mod common;
+
+use common::data;
+
+use capmesh::cap::{CapMap, Domain};
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::mesh::shapes::{icosphere, spherical_cap};
 use capmesh::mesh::{Topology, TriMesh};
 use capmesh::progress::NoProgress;
-use std::path::PathBuf;
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
-}
 
 fn adaptive(mesh: &TriMesh, name: &str) -> CapMap {
     parameterize(mesh, &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"))
@@ -168,7 +168,8 @@ fn reversed_winding_gives_the_same_map() {
 /// |d_area| 1.1, a vertex moved by 70% of the radius).
 #[test]
 fn plain_centroid_map_of_a_punctured_surface_stays_area_preserving() {
-    use capmesh::cap::{PunctureEnd, Smoothing};
+    use capmesh::param::PunctureEnd;
+    use capmesh::refine::Smoothing;
     let name = "closed_brain12k_choi.obj.gz";
     let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
     let options = ParamOptions { smoothing: Smoothing::Fixed(0.0), area_refinement: 0, puncture_end: PunctureEnd::Bottom, ..Default::default() };
@@ -187,7 +188,8 @@ fn plain_centroid_map_of_a_punctured_surface_stays_area_preserving() {
 /// map (this bumpy 41k ellipsoid at kappa = 3: mean |d_area| 0.59 before, 0.006 with them held).
 #[test]
 fn smoothing_leaves_the_puncture_neighbourhood_alone() {
-    use capmesh::cap::{PunctureEnd, Smoothing};
+    use capmesh::param::PunctureEnd;
+    use capmesh::refine::Smoothing;
     let mut mesh = icosphere(6);
     for p in &mut mesh.vertices {
         let r = 1.0 + 0.08 * (5.0 * p[0]).sin() * (4.0 * p[1]).sin() * (3.0 * p[2]).sin();
@@ -206,7 +208,7 @@ fn smoothing_leaves_the_puncture_neighbourhood_alone() {
 /// steps, the same map.
 #[test]
 fn logarithmic_newton_steps_save_iterations_and_keep_the_map() {
-    use capmesh::cap::PunctureEnd;
+    use capmesh::param::PunctureEnd;
     let mesh = read_mesh(&data("closed_lung_rml_chaste.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
     let options = ParamOptions { puncture_end: PunctureEnd::Bottom, ..ParamOptions::default() };
     let mut plain = options.clone();
@@ -229,7 +231,7 @@ fn logarithmic_newton_steps_save_iterations_and_keep_the_map() {
 /// distortion. With a fixed domain (no search) both ends are finished and compared.
 #[test]
 fn best_puncture_end_finishes_the_better_searched_end() {
-    use capmesh::cap::PunctureEnd;
+    use capmesh::param::PunctureEnd;
     let mesh = read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
     let run = |end: PunctureEnd, domain: Domain| {
         let options = ParamOptions { puncture_end: end, ..ParamOptions::default() }.with_domain(domain);
@@ -261,7 +263,7 @@ fn best_puncture_end_finishes_the_better_searched_end() {
 /// iteration factoring (mean |d_area| and |d_angle| within 1%, no fold).
 #[test]
 fn every_other_stretch_factorization_gives_the_same_cap() {
-    use capmesh::cap::parameterize::FlattenReport;
+    use capmesh::param::FlattenReport;
     let mesh = read_mesh(&data("closed_brain12k_choi.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
     let alternate = ParamOptions::default();
     assert_eq!(alternate.closed.stretch.refactor_period, 2);

@@ -1,14 +1,13 @@
 //! The radius search on a coarse level (cap::coarse_level) finds a cap as good as the search
 //! at full resolution, with a fraction of the full-resolution Newton iterations.
 
-use capmesh::cap::{parameterize, ParamOptions};
+mod common;
+
+use common::data;
+
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::progress::NoProgress;
-use std::path::PathBuf;
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
-}
 
 /// Open surfaces' full-resolution search takes a dozen solves; the coarse one must do with
 /// under half their Newton iterations. A closed surface's search starts at its bound and ends
@@ -37,7 +36,7 @@ fn compare(name: &str, z_tolerance: f64) {
     );
     assert_eq!(full.search_sites, None);
     let sites = coarse.search_sites.unwrap_or_else(|| panic!("{name}: no coarse search"));
-    assert!(sites <= capmesh::cap::parameterize::DEFAULT_SEARCH_SITES && 2 * sites < mesh.n_vertices());
+    assert!(sites <= capmesh::param::DEFAULT_SEARCH_SITES && 2 * sites < mesh.n_vertices());
     assert_eq!(coarse.transport_solves, 1, "{name}: only r* is solved at full resolution");
     let closed = name.starts_with("closed_");
     let most = if closed { 0.75 } else { 0.5 };
@@ -83,7 +82,7 @@ fn bunny_closed() {
 
 #[test]
 fn coarse_level_size_follows_the_mesh_size() {
-    use capmesh::cap::parameterize::{search_level_sites, DEFAULT_SEARCH_SITES, MIN_SEARCH_SITES};
+    use capmesh::param::{search_level_sites, DEFAULT_SEARCH_SITES, MIN_SEARCH_SITES};
     let d = DEFAULT_SEARCH_SITES;
     for closed in [false, true] {
         assert_eq!(search_level_sites(53_054, d, closed), Some(53_054 / 16));
@@ -108,7 +107,7 @@ fn coarse_level_size_follows_the_mesh_size() {
 /// within 1%.
 #[test]
 fn final_map_at_the_transport_tolerance_saves_a_newton_step_at_the_same_quality() {
-    use capmesh::cap::parameterize::{MASS_TOLERANCE, TRANSPORT_TOLERANCE};
+    use capmesh::param::{MASS_TOLERANCE, TRANSPORT_TOLERANCE};
     let mesh = read_mesh(&data("open_face_choi.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
     let loose = ParamOptions::default();
     assert_eq!(loose.transport.tolerance, TRANSPORT_TOLERANCE);

@@ -1,4 +1,4 @@
-//! Very elongated closed surfaces (`cap::lambda_fallback`): the shared bunny stretched along
+//! Very elongated closed surfaces (`param::lambda_fallback`): the shared bunny stretched along
 //! its principal axis. At the paper's `lambda = 0.2` its initial map squeezes the far end
 //! below double precision and the transport stalls (10 and 50 times), and at `lambda = 0.5`
 //! the 50 times stretched one comes out far from area preserving; the parameterization maps
@@ -11,9 +11,10 @@
 //! gave a poor map instead of a stalled one; from the bound it finds the lower energy there,
 //! 0.9114 against 0.9211, and ends with mean |d_area| 0.137 instead of 0.170.)
 
-use capmesh::cap::lambda_fallback::POOR_MAP_AREA_DISTORTION;
-use capmesh::cap::parameterize::FlattenReport;
-use capmesh::cap::{parameterize, CapMap, ParamOptions};
+use capmesh::param::POOR_MAP_AREA_DISTORTION;
+use capmesh::param::FlattenReport;
+use capmesh::cap::CapMap;
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::mesh::TriMesh;
 use capmesh::omt::OmtError;

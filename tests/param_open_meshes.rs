@@ -3,15 +3,15 @@
 //! |d_angle| is no larger than the hemisphere baseline's (paper Table 1). The transport's
 //! finer backtracking of its logarithmic steps saves Newton steps on the hand.
 
-use capmesh::cap::parameterize::MASS_TOLERANCE;
-use capmesh::cap::{parameterize, Domain, ParamOptions};
+mod common;
+
+use common::data;
+
+use capmesh::param::MASS_TOLERANCE;
+use capmesh::cap::Domain;
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::progress::NoProgress;
-use std::path::PathBuf;
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
-}
 
 fn check(name: &str) {
     let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
@@ -100,4 +100,20 @@ fn finer_backtracking_of_logarithmic_steps_saves_full_resolution_newton_steps() 
     assert!((ra.area_distortion.mean_abs - rb.area_distortion.mean_abs).abs() < 0.05 * rb.area_distortion.mean_abs);
     assert!((ra.angle_distortion.mean_abs - rb.angle_distortion.mean_abs).abs() < 0.01 * rb.angle_distortion.mean_abs);
     assert_eq!(ra.flipped_faces, 0);
+}
+
+/// The report's typed kind and domain serialize as the words the JSON has always carried.
+#[test]
+fn report_kind_and_domain_serialize_as_strings() {
+    use capmesh::mesh::{shapes, SurfaceKind};
+    let disk = shapes::spherical_cap(0.2, 8, 24);
+    let map = parameterize(&disk, &ParamOptions::default().with_domain(Domain::Radius(1.5)), &NoProgress).unwrap();
+    assert_eq!((map.kind, map.report.kind), (SurfaceKind::OpenDisk, SurfaceKind::OpenDisk));
+    assert_eq!(map.report.domain, Domain::Radius(1.5));
+    let json = serde_json::to_value(&map.report).unwrap();
+    assert_eq!(json["kind"], "open disk");
+    assert_eq!(json["domain"], "radius=1.5");
+    let closed = parameterize(&shapes::icosphere(2), &ParamOptions::default(), &NoProgress).unwrap();
+    let json = serde_json::to_value(&closed.report).unwrap();
+    assert_eq!((json["kind"].as_str(), json["domain"].as_str()), (Some("closed genus-0"), Some("adaptive")));
 }

@@ -3,25 +3,14 @@
 //! coordinates, dropped faces) either map or fail with an error; nothing panics, and every map that
 //! succeeds has finite cap positions on the unit sphere.
 
-use capmesh::cap::{parameterize, ParamOptions};
+mod common;
+
+use common::Rng;
+
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::mesh::shapes::{icosphere, spherical_cap};
 use capmesh::progress::NoProgress;
 use capmesh::TriMesh;
-
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
 
 fn mutate(mesh: &TriMesh, rng: &mut Rng) -> TriMesh {
     let mut m = mesh.clone();

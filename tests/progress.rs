@@ -1,7 +1,7 @@
 //! The progress trait: stages report monotone fractions in [0, 1], and a `Break` cancels the
 //! pipeline with `Error::Cancelled` instead of finishing.
 
-use capmesh::cap::{parameterize, ParamOptions};
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::mesh::shapes::{spherical_cap, spherical_cap_sectors};
 use capmesh::progress::Stage;
 use capmesh::Error;

@@ -4,15 +4,17 @@
 //! input's orientation does not matter), the remeshing metrics scale as areas and lengths do,
 //! and the stereographic projection and its inverse are each other's inverse.
 
-use capmesh::cap::{inverse_stereographic, parameterize, stereographic, ParamOptions};
+mod common;
+
+use capmesh::cap::{inverse_stereographic, stereographic};
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::read_mesh;
 use capmesh::metrics::remesh_metrics;
 use capmesh::progress::NoProgress;
 use capmesh::TriMesh;
-use std::path::Path;
 
 fn data(name: &str) -> TriMesh {
-    read_mesh(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)).unwrap()
+    read_mesh(&common::data(name)).unwrap()
 }
 
 /// Rotation about the axis (1, 2, 3) by 1.1 rad, scaling by 3.7, translation by (5, -2, 11).

@@ -4,24 +4,12 @@
 //! reads has only in-range indices. A stable-toolchain stand-in for coverage-guided fuzzing
 //! (issue 7 asks for cargo-fuzz as well).
 
+mod common;
+
+use common::Rng;
+
 use capmesh::io::{read_mesh_from_bytes, write_mesh_to_bytes, Format};
 use capmesh::mesh::shapes::spherical_cap;
-
-/// A small deterministic generator (SplitMix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
 
 fn mutate(bytes: &[u8], rng: &mut Rng) -> Vec<u8> {
     let mut b = bytes.to_vec();

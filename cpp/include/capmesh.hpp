@@ -11,7 +11,7 @@
 // An exception thrown by the progress callback cancels the computation and is rethrown by the
 // entry point after capmesh returned (it never unwinds through the C ABI).
 //
-// Link with libcapmesh.so or libcapmesh.a (cargo build --release --features capi); the static
+// Link with libcapmesh.so or libcapmesh.a (cargo build --release --no-default-features --features capi); the static
 // library also needs -lpthread -ldl -lm.
 #ifndef CAPMESH_HPP
 #define CAPMESH_HPP

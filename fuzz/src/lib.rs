@@ -1,6 +1,6 @@
 //! Shared checks of the fuzz targets in `fuzz_targets/`.
 
-use capmesh::cap::{parameterize, ParamOptions};
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io::{read_mesh_from_bytes, Format};
 use capmesh::mesh::shapes::{icosphere, spherical_cap};
 use capmesh::progress::NoProgress;

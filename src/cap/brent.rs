@@ -127,7 +127,7 @@ fn step_tolerance(x: f64, xtol: &impl Fn(f64) -> f64) -> f64 {
 /// evaluations are spent and [`minimize_with_tolerance`] runs with the probe as before.
 /// The closed surfaces' energy falls all the way to the bound on every mesh measured, and
 /// the approach cost 5 of their 7 transport solves, the first of them cold (see
-/// [`crate::cap::parameterize()`]).
+/// [`crate::param::parameterize()`]).
 pub fn minimize_from_lower_bound<E>(
     mut f: impl FnMut(f64) -> Result<f64, E>,
     lower: f64,

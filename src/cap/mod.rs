@@ -1,22 +1,13 @@
-//! The cap: stereographic projection, the radius search and the whole parameterization
-//! (paper Sec. 3.1.2-3.1.3 and 3.2).
+//! The cap: the stereographic projection between the disk of radius `r` and the cap
+//! `Z >= Z*`, the parameter domains, Brent's method for the radius search, and [`CapMap`],
+//! a surface mapped onto the cap (paper Sec. 3.1.2-3.1.3). The parameterization that
+//! produces a [`CapMap`] is [`crate::param`].
 
-pub mod area_refine;
-pub mod boundary_polygon;
 pub mod brent;
-pub mod coarse_level;
 pub mod domain;
-pub mod kernel_untangle;
-pub mod lambda_fallback;
-pub mod parameterize;
-pub mod planar_transport;
-pub mod puncture_end;
-pub mod regularize;
+mod map;
 pub mod stereographic;
-pub mod untangle;
 
 pub use domain::Domain;
-pub use lambda_fallback::{LambdaFallback, DEFAULT_LAMBDA_FALLBACKS};
-pub use parameterize::{parameterize, CapMap, OpenInitialMap, ParamOptions, ParamReport, PunctureEnd, PunctureTrial, RadiusSample};
-pub use regularize::Smoothing;
+pub use map::CapMap;
 pub use stereographic::{inverse_stereographic, radius_of_z_star, stereographic, z_star_of_radius};

@@ -7,7 +7,7 @@ use super::options::{capmesh_v1_param_options, capmesh_v1_param_options_default,
 use super::progress::{capmesh_v1_progress_fn, CallbackProgress};
 use super::status::{guard, capmesh_v1_status, Failure};
 use super::view::{capmesh_v1_mesh_view, read_view};
-use crate::cap::parameterize;
+use crate::param::parameterize;
 use crate::metrics::remesh_metrics;
 use crate::remesh::remesh;
 

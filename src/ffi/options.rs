@@ -1,8 +1,10 @@
 //! Option structs of the C ABI, their defaults and their conversion to the library's options.
 
 use super::status::Failure;
-use crate::cap::parameterize::{PunctureEnd, DEFAULT_AREA_REFINEMENT};
-use crate::cap::{Domain, ParamOptions, Smoothing};
+use crate::param::{PunctureEnd, DEFAULT_AREA_REFINEMENT};
+use crate::cap::Domain;
+use crate::param::ParamOptions;
+use crate::refine::Smoothing;
 use crate::flatten::closed::DEFAULT_LAMBDA;
 use crate::remesh::{CapGrid, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
 

@@ -65,6 +65,7 @@ pub(crate) fn status_of(error: &Error) -> capmesh_v1_status {
         Error::Unsupported(_) => S::CAPMESH_V1_UNSUPPORTED,
         Error::InvalidOption(_) => S::CAPMESH_V1_INVALID_ARGUMENT,
         Error::Cancelled(_) => S::CAPMESH_V1_CANCELLED,
+        Error::Internal(_) => S::CAPMESH_V1_INTERNAL,
         Error::Harmonics(
             HarmonicsError::OrderTooLarge { .. } | HarmonicsError::TooFewPoints { .. } | HarmonicsError::TooLarge { .. },
         ) => S::CAPMESH_V1_INVALID_ARGUMENT,

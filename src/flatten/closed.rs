@@ -29,7 +29,7 @@ pub struct ClosedFlattenOptions {
     /// Stretch energy options.
     pub stretch: StretchOptions,
     /// Solve the two coordinates' right-hand sides of the large systems on separate threads
-    /// ([`SpdSolver::set_parallel_columns`]). Default `true`; [`crate::cap::PunctureEnd::Best`]
+    /// ([`SpdSolver::set_parallel_columns`]). Default `true`; [`crate::param::PunctureEnd::Best`]
     /// sets it to `false` while both ends flatten at once.
     pub parallel_solves: bool,
 }
@@ -152,22 +152,18 @@ fn stretch_then_beltrami(
 /// and the Beltrami solve) from which the harmonic map's nested dissection is offered
 /// ([`SpdSolver::offer_positions`]): its analysis pays only over many factorizations. With
 /// every stretch iteration factoring (`factored_iterations = usize::MAX`: 11) the 164k
-/// ellipsoid's offer was kept (one end's flattening 3.16-3.65 -> 2.65-3.17 s). The default
-/// closed schedule factors every other iteration
-/// ([`super::stretch_energy::StretchOptions::refactor_period`]: 5 planned, 6 with the Beltrami
-/// solve), below this: offered anyway at 6, the 164k ellipsoid's flattening took 2.24-2.41 s
-/// against 2.28-2.36 s without (three alternating runs, 2026-12-01), so it is not. Open
-/// surfaces factor 3 ([`crate::cap::ParamOptions::open_factored_iterations`]), and on the
-/// hand, the 101k and the 1M disk AMD had the smaller factor anyway.
+/// ellipsoid's offer was kept and paid; the default closed schedule factors every other
+/// iteration ([`super::stretch_energy::StretchOptions::refactor_period`]: 5 planned, 6 with
+/// the Beltrami solve), below this, where the offer gained nothing. Open surfaces factor 3
+/// ([`crate::ParamOptions::open_factored_iterations`]), and on the hand, the 101k and the
+/// 1M disk AMD had the smaller factor anyway.
 const DISSECTION_OFFER_FACTORIZATIONS: usize = 8;
 
 /// The offer is made only when AMD's factor has more than this many entries per
-/// `n log2 n` unknowns: the dissection's factor had 4.5-4.9 on every mesh measured
-/// (2026-12-01: hand 4.9, 48k brain 4.5, 100k ellipsoid 4.6, 164k ellipsoid 4.7), AMD's 3.1
-/// (48k brain), 3.4 (hand), 4.3 (100k ellipsoid) and 5.65 (164k ellipsoid, numbered by
-/// icosphere subdivision). Below it the dissection's analysis (two of them at once for
-/// [`crate::cap::PunctureEnd::Best`]) only cost time: 48k brain flattening 0.55 -> 0.62 s,
-/// 100k ellipsoid 1.36 -> 1.38 s (medians of four alternating runs, the same maps).
+/// `n log2 n` unknowns: the dissection's factor had 4.5-4.9 on every mesh measured, AMD's
+/// 3.1 to 5.65 (the 164k ellipsoid, numbered by icosphere subdivision). Below it the
+/// dissection's analysis (two of them at once for [`crate::param::PunctureEnd::Best`]) only
+/// costs time.
 const DISSECTION_FILL: f64 = 4.5;
 
 /// `lambda * mu`, pulled back inside the unit disk where the stretch energy map folded a face

@@ -17,18 +17,14 @@
 //! ([`StretchOptions::refactor_period`]; a factorization one step old is nearly as good as a
 //! fresh one, while one seven steps old lost).
 //!
-//! Measured and dropped (2026-12-01, closed surfaces, whose punctured maps start far from
-//! equiareal: energy ratio 16733 on the 100k ellipsoid, 7.0 after the 10 iterations):
+//! Measured and dropped (closed surfaces, whose punctured maps start far from equiareal):
 //! conjugate gradients on each iteration's system preconditioned by the previous
 //! iteration's factor (no convergence in 60 iterations: the stretch weights change by
 //! orders of magnitude between iterations); starting from the harmonic map equalized
-//! radially (Lambert-like: radius mapped to the square root of the enclosed area fraction;
-//! ratio 95 instead of 4828 after one iteration, but the tail converges as slowly: 7.9
-//! instead of 7.0 after ten); Anderson acceleration of depth 2-5 as a third candidate
-//! beside the plain and over-relaxed steps (100k ellipsoid 7.0 -> 2.1-2.8 after ten, but 9
-//! of its iterations to reach what 10 without it reach; with the radial start, final mean
-//! |d_area| 0.0056 against 0.0054); and fewer iterations (6 instead of 10: bird skull mean
-//! |d_area| 0.128 -> 0.142, 48k brain 0.0068 -> 0.0072, the others within 2%).
+//! radially (Lambert-like; a far better first iteration, but the tail converges as
+//! slowly); Anderson acceleration of depth 2-5 as a third candidate beside the plain and
+//! over-relaxed steps (lower energies early, no better final maps); and fewer iterations
+//! (6 instead of 10 left the bird skull's and the 48k brain's maps worse).
 
 use super::{pin, FlattenError};
 use crate::linalg::{GraphPattern, SpdSolver};
@@ -41,10 +37,9 @@ use crate::mesh::geometry::{folded_faces, signed_area_2d, triangle_area};
 pub struct StretchOptions {
     /// Maximum fixed-point iterations. Default 10: each costs a sparse factorization, or two
     /// triangular solves with a reused one (see [`StretchOptions::refactor_period`]). With
-    /// the over-relaxation below, 10 iterations leave the final cap map as 25 plain ones did
-    /// (measured on the eleven shared meshes, 2026-11-30: mean |d_area| and |d_angle| within
-    /// 2%, except the 1.8k-vertex bunny's mean |d_area|, 0.0367 -> 0.0409; hand flattening
-    /// 1.68 -> 0.82 s). 10 plain iterations left the hand at 0.0297 instead of 0.0275.
+    /// the over-relaxation below, 10 iterations leave the final cap map about as 25 plain ones
+    /// did (mean |d_area| and |d_angle| within 2% on the shared meshes but the small bunny);
+    /// 10 plain iterations left the hand's map worse.
     pub max_iterations: usize,
     /// Stop when the relative energy decrease falls below this. Default `1e-6`.
     pub tolerance: f64,
@@ -61,19 +56,15 @@ pub struct StretchOptions {
     /// factor every other iteration by the period): with 3 and no period the closed surfaces'
     /// punctured maps, far from converged after 10 iterations, lost (bunny's final mean
     /// |d_area| 0.037 -> 0.042, 48k brain's energy ratio 5.5 -> 6.3); the open surfaces' maps
-    /// use [`crate::cap::ParamOptions::open_factored_iterations`] and no period.
+    /// use [`crate::param::ParamOptions::open_factored_iterations`] and no period.
     pub factored_iterations: usize,
     /// After the first `factored_iterations`, iteration `k` factors its own matrix when `k`
     /// is a multiple of this (0: never), so the iterations between reuse a factorization one
     /// step old. Default 2, the closed surfaces' flattening: 6-7 factorizations instead of 10
-    /// (a stale step is tried at each odd iteration and kept 3-5 times), and a lower final
-    /// stretch energy on half of the shared closed meshes, the final cap maps the same
-    /// (measured 2026-12-01: mean |d_area| and |d_angle| within 0.5% on the 12k and 48k
-    /// brains, the closed hippocampus, the lung and the 100k and 164k ellipsoids; the small
-    /// bird skull and bunny, which move with any change, 0.1274 -> 0.1218 and 0.0390 ->
-    /// 0.0367); 164k ellipsoid flattening (both puncture ends in parallel) 2.77-3.03 ->
-    /// 2.20-2.34 s in three alternating runs. Every iteration factoring is `factored_iterations
-    /// = usize::MAX`.
+    /// (a stale step is tried at each odd iteration and kept 3-5 times), a lower final stretch
+    /// energy on half of the shared closed meshes, and the same final cap maps to 0.5% (but the
+    /// small bird skull and bunny, which move with any change). Every iteration factoring is
+    /// `factored_iterations = usize::MAX`.
     pub refactor_period: usize,
 }
 
@@ -188,11 +179,8 @@ type RightHandSides = Vec<Vec<f64>>;
 /// The layout of the stretch-energy matrices `L_S(f)` of one mesh: how many free-free edges
 /// (free indices, `a < b`, sorted), their compressed-column pattern, and per face the edge of the
 /// side opposite each corner. Each iteration sums its corner weights straight into edges
-/// and diagonal: on the 53k hand the first assembly (triplets sorted, then each triplet's
-/// slot found) took 53 ms and each later one (triplets scattered into the recorded slots)
-/// 8-17 ms; with the edges' value slots recorded by the pattern instead of searched in
-/// their columns ([`GraphPattern::symmetric_on_keys`], 2026-12-01) an assembly of the 164k
-/// closed ellipsoid took 4.5-6 ms instead of 18-35 ms (the same matrices).
+/// and diagonal through the value slots the pattern records
+/// ([`GraphPattern::symmetric_on_keys`]) instead of sorting triplets and searching slots.
 struct StretchLayout {
     n_free: usize,
     n_edges: usize,

@@ -17,9 +17,9 @@
 //! `q1 + q2 = 1`.
 //!
 //! ```no_run
-//! use capmesh::{io, cap, harmonics, progress::NoProgress};
-//! let mesh = io::read_mesh(std::path::Path::new("tests/data/open_face_choi.obj.gz"))?;
-//! let map = cap::parameterize(&mesh, &cap::ParamOptions::default(), &NoProgress)?;
+//! use capmesh::{harmonics, parameterize, read_mesh, NoProgress, ParamOptions};
+//! let mesh = read_mesh(std::path::Path::new("tests/data/open_face_choi.obj.gz"))?;
+//! let map = parameterize(&mesh, &ParamOptions::default(), &NoProgress)?;
 //! let z_star = map.report.z_star.unwrap_or(-1.0);
 //! let fit = harmonics::fit(&map.cap, &mesh.vertices, z_star, 15)?;
 //! let smooth = fit.reconstruct(&map.cap, 5)?; // truncated to orders n <= 5

@@ -3,7 +3,7 @@
 //! reconstruction error per order and the paper's `N = 1` aspect ratio (Eq. 29).
 //!
 //! ```text
-//! cap::parameterize -> CapMap { cap, report.z_star }
+//! param::parameterize -> CapMap { cap, report.z_star }
 //!   -> fit_all_orders (one QR)          -> HarmonicFit at order N
 //!   -> order_errors                     -> mean / max vertex distance per order n <= N
 //!   -> reconstruct(N)                   -> the input's connectivity at the order-N positions
@@ -32,7 +32,8 @@ use super::fit::{fit, fit_all_orders, order_errors, HarmonicFit, OrderError, MAX
 use super::legendre::MAX_ORDER;
 use super::shape::{aspect_ratio, order_one_ellipsoid};
 use super::HarmonicsError;
-use crate::cap::{parameterize, CapMap, ParamOptions, ParamReport};
+use crate::cap::CapMap;
+use crate::param::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
 use crate::mesh::TriMesh;
 use crate::progress::{self, Progress, Stage};

@@ -4,7 +4,7 @@
 //! The transport's Newton matrix (paper Sec. 2.2, the Hessian of Eq. 9) is a weighted graph
 //! Laplacian on the regular triangulation's edges. Built as triplets (an explicit zero per
 //! kept pattern entry, two entries per edge, one per diagonal) and assembled by sorting, it
-//! took 17-22 ms of each 140 ms Newton step on the 53k-vertex hand. [`GraphPattern`] lays
+//! took a seventh of each Newton step on the 53k-vertex hand. [`GraphPattern`] lays
 //! out the columns once per pattern (rows come out sorted without a sort: see
 //! [`GraphPattern::new`]) and each matrix on it is a scatter of its edge values.
 

@@ -11,25 +11,18 @@
 //! about `sqrt(n)` unknowns (positions in any dimension work, but on a folded surface's 3D
 //! positions the cuts are long: see [`crate::omt::newton::NESTED_DISSECTION_SITES`]).
 //!
-//! Measured against faer's AMD (2026-11-30, one run each, transport Hessians): on the 53k
-//! hand the ordering and symbolic analysis take 26 ms instead of 40-59 ms, the factor has
-//! 1.36 times the entries and the numeric factorization 39 ms instead of 33 ms (65 against
-//! 78 ms a Newton step); on the 101k synthetic disk the factor is smaller (5.9M against 6.4M
-//! entries) and a step 106 ms instead of 151 ms. Leaves of 8 gave the least fill (3.52M on
-//! the hand; 16: 3.55M, 64: 3.64M, 128: 3.92M); one-sided separators always on the first
-//! half gave 3.64M-3.71M. Splitting at the medians of all the positions, once, instead of
-//! at the medians of what each separator leaves (2026-11-30, hand): ordering 15 -> 6-7 ms a
-//! Newton step, factors 3.52M-3.73M entries against 3.51M-3.79M. Both one-sided separators
-//! of a split come from one scan of the first half's edges (2026-12-01, the same orders:
-//! 164k closed ellipsoid 31-47 -> 17-27 ms a full-resolution Newton step).
+//! Against faer's AMD on the transport Hessians: on the 53k hand the ordering and symbolic
+//! analysis are faster and the factor somewhat larger, a Newton step faster overall; on the
+//! 101k synthetic disk the factor is smaller too. Leaves of 8 gave the least fill; splitting
+//! at the medians of all the positions once, instead of at the medians of what each
+//! separator leaves, orders faster at the same fill; both one-sided separators of a split
+//! come from one scan of the first half's edges.
 //!
-//! Measured and dropped (2026-12-01): METIS's multilevel nested dissection (`METIS_NodeND`
-//! through the metis-sys crate) for the flattening systems, whose pattern is fixed: 39%
-//! fewer factor entries than AMD on the 164k closed ellipsoid (9.8M against 16.0M; 100k:
-//! 5.7M against 7.2M; hand 2.0M against 2.8M), each numeric factorization 0.18 -> 0.14 s, but
-//! the ordering took 0.64 s (AMD 0.14-0.16 s) and the flattening was no faster (3.0 s either
-//! way); METIS on the graph contracted by one or two matchings was 2-4 times faster to order
-//! and lost the fill it had won (13.2M, 18.6M).
+//! Measured and dropped: METIS's multilevel nested dissection (`METIS_NodeND` through the
+//! metis-sys crate) for the flattening systems, whose pattern is fixed: far less fill than
+//! AMD on the large meshes, but its ordering took as long as the factorizations saved, so
+//! the flattening was no faster; METIS on a contracted graph ordered faster and lost the
+//! fill it had won.
 
 /// Unknowns per leaf at most (eliminated in the order they come).
 pub const LEAF: usize = 8;
@@ -51,9 +44,8 @@ pub fn nested_dissection<const D: usize>(points: &[[f64; D]], col_ptr: &[usize],
 /// at its middle into the halves below and above the median along the longest side of the
 /// part's bounding box, recursively down to [`LEAF`] points. [`Dissection::order`] then only
 /// looks at a pattern's edges to find each split's separator; the transport's Newton
-/// matrices change pattern every step but their sites never move (hand: the ordering took
-/// 15 ms a step with the median splits redone on the parts left by the separators, 6-7 ms with
-/// them fixed here).
+/// matrices change pattern every step but their sites never move (fixing the splits here
+/// halves the ordering's time against redoing them on the parts the separators leave).
 #[derive(Debug, Clone)]
 pub struct Dissection {
     /// `points_in_order[k]`: the point at position `k` of the split order.

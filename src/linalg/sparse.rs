@@ -150,35 +150,24 @@ type AnalysedPattern = (Vec<usize>, Vec<usize>, SymbolicCholesky<usize>);
 ///
 /// The factorization is always supernodal: faer picks the simplicial one below 40 flops
 /// per factor entry, which covers the 2k-17k-vertex meshes' systems, and there it was the
-/// slower (parameterization, one run each: left ventricle 0.31 -> 0.21 s, face 1.03 ->
-/// 0.77 s, bunny 0.37 -> 0.33 s; the 48k-53k systems were supernodal already).
+/// slower.
 ///
 /// Factorization and solves run on the calling thread (`Par::Seq`): the systems here have
 /// 10^3 to 10^6 unknowns and a planar-graph pattern, where faer's thread pool spent more time
-/// waking workers than they saved (53k-vertex hand: flattening 2.3 s sequential against 6.8 s
-/// on two threads; again 2026-12-01 with `Par::rayon(2)` for the systems of more than 50k
-/// unknowns only, the 100k closed ellipsoid's parameterization, whose kept end finishes on
-/// an idle second core: transport 1.25-1.26 s sequential, 1.55-1.63 s parallel, the same map
-/// to the bit; and once more with the whole pipeline on a worker thread (`crate::pool`), so
-/// that faer's tasks are split in place: 164k ellipsoid flattening, both puncture ends at
-/// once, 2.98 -> 3.24 s, medians of three alternating runs). Parallelism lives one level
-/// up, over independent work, and over the right-hand sides of large systems (from 20 000
-/// unknowns).
+/// waking workers than they saved (also with the pipeline on a worker thread, `crate::pool`,
+/// and for the largest systems only). Parallelism lives one level up, over independent work,
+/// and over the right-hand sides of large systems (from 20 000 unknowns).
 ///
 /// Clones share the symbolic factorization: [`SpdSolver::analyze`] once, then clone for
 /// parallel numeric factorizations of matrices with that pattern.
 ///
-/// Measured and dropped (2026-11-30): keeping the last minimum-degree ordering for the next
-/// pattern of the same size while its factor stays within 25% of a fresh ordering's. On the
-/// hand's full-resolution transport solve the previous step's ordering gave 2.5 to 5 times
-/// the fill in all but the last two steps (the patterns change much while the steps are
-/// damped), so the analysis (43 ms, of which 31 ms ordering) was redone anyway; no stage time
-/// moved beyond the noise. A nested dissection by breadth-first level structures (George
-/// 1973, leaves of 16) matched the minimum-degree fill on a regular grid but gave 1.3-1.6
-/// times its factor on the hand's matrices, and took longer to compute. A geometric one on
-/// known positions ([`SpdSolver::set_positions`], [`super::nested_dissection`]) is cheap
-/// enough to pay on the large transport systems (see
-/// [`crate::omt::newton::NESTED_DISSECTION_SITES`]).
+/// Measured and dropped: keeping the last minimum-degree ordering for the next pattern of the
+/// same size while its factor stays within 25% of a fresh ordering's (the transport's patterns
+/// change too much while the steps are damped, so the analysis was redone anyway); a nested
+/// dissection by breadth-first level structures (George 1973), which gave a larger factor on
+/// irregular meshes and took longer to compute. A geometric one on known positions
+/// ([`SpdSolver::set_positions`], [`super::nested_dissection`]) is cheap enough to pay on the
+/// large transport systems (see [`crate::omt::newton::NESTED_DISSECTION_SITES`]).
 #[derive(Default, Clone)]
 pub struct SpdSolver {
     symbolic: Option<Arc<AnalysedPattern>>,
@@ -212,10 +201,8 @@ impl SpdSolver {
     /// Whether [`SpdSolver::solve_in_place`] solves the right-hand sides of a large system on
     /// separate threads (from 20 000 unknowns; the default) or all in one pass over the
     /// factor. One pass is the better when the other core is busy with another such solver:
-    /// [`crate::cap::PunctureEnd::Best`] flattens both ends at once, and there the two
-    /// streams of each solve only compete for the memory bandwidth (one pass: flattening of
-    /// the 100k closed ellipsoid 1.46-1.64 -> 1.28-1.43 s, of the 164k one 3.31-3.62 ->
-    /// 3.13-3.54 s, three alternating runs each, 2026-12-01).
+    /// [`crate::param::PunctureEnd::Best`] flattens both ends at once, and there the two
+    /// streams of each solve only compete for the memory bandwidth.
     pub fn set_parallel_columns(&mut self, parallel: bool) {
         self.sequential_columns = !parallel;
     }
@@ -259,10 +246,8 @@ impl SpdSolver {
     /// The closed-surface flattening offers its harmonic map after the first solve when its
     /// later systems (11 factorizations with every stretch iteration factoring; not with the
     /// default schedule, see `flatten::closed`'s `DISSECTION_OFFER_FACTORIZATIONS`) have the
-    /// same pattern. Measured 2026-12-01 (factor
-    /// entries, AMD against the dissection): 164k closed ellipsoid 16.0M against 13.4M (kept:
-    /// flattening of one puncture end 3.16-3.65 -> 2.65-3.17 s), 100k ellipsoid 7.2M against
-    /// 7.7M, 48k brain 2.3M against 3.4M, hand 2.8M against 4.1M (AMD better; see
+    /// same pattern. On the 164k closed ellipsoid the dissection's factor was the smaller and
+    /// was kept; on the 100k ellipsoid, the 48k brain and the hand AMD's was (see
     /// `flatten::closed`'s `DISSECTION_FILL` for the fill that makes the offer).
     pub fn offer_positions(&mut self, positions: &[[f64; 2]], what: &'static str) -> Result<bool, SolveError> {
         let Some(current) = self.symbolic.clone() else { return Ok(false) };
@@ -339,10 +324,8 @@ fn copy_back(m: &Mat<f64>, rhs: &mut [Vec<f64>], what: &'static str) -> Result<(
 }
 
 /// Unknowns from which [`SpdSolver::solve_in_place`] solves its right-hand sides on
-/// separate threads: the hand's stretch-energy iterations with a kept factorization (53k
-/// unknowns, two columns) took 10-11 ms per solve against 13-16 ms for both columns at once,
-/// the whole flattening 0.54-0.63 s against 0.56-0.67 s (five alternating runs, 2026-12-01).
-/// Small systems' solves are too short to share.
+/// separate threads (the hand's 53k-unknown stretch-energy solves were about a fifth faster
+/// so); small systems' solves are too short to share.
 const PARALLEL_COLUMNS: usize = 20_000;
 
 /// Sparse LU solver for general square matrices, reusing the symbolic factorization; runs on

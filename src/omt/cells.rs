@@ -291,15 +291,12 @@ struct CellScratch {
 }
 
 /// Masses and Hessian entries only (`moment` left empty): what each Newton iteration needs.
-/// The moments take a Gauss-Legendre rule per cell edge; leaving them to the end of each
-/// solve took the transport of the lung lobe from 1.00 to 0.83 s, the 12k brain from 0.45 to
-/// 0.38 s (one run each; the hand, whose time is in its factorizations, did not move).
+/// The moments take a Gauss-Legendre rule per cell edge, so they are left to the end of
+/// each solve.
 ///
 /// Each power-cell edge's fan mass and Hessian entry come from one arctangent
-/// ([`RadialDensity::fan_mass_and_segment_integral`]); against whole-cell walks (three
-/// arctangents per interior edge) the transport, three alternating runs each (2026-12-01),
-/// took hand 1.36-1.61 -> 1.25-1.50 s, MEG helmet 0.065-0.090 -> 0.064-0.067 s, closed
-/// hippocampus 0.34-0.41 -> 0.25-0.33 s.
+/// ([`RadialDensity::fan_mass_and_segment_integral`]) instead of three per interior edge
+/// for whole-cell walks.
 pub fn integrate_masses(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity) -> CellIntegrals {
     let (centers, far) = centers_and_far(tri, r);
     let edges = clipped_edges(tri, &centers, far, r, |pi, pj, x0, x1| {

@@ -4,10 +4,14 @@
 //! exact density integrals ([`density`]) and a damped Newton driver ([`newton`]).
 
 pub mod cells;
+pub mod coarse_level;
 pub mod density;
 pub mod newton;
+pub mod options;
+pub mod planar_transport;
 pub mod triangulation;
 
 pub use cells::CellIntegrals;
 pub use density::{RadialDensity, StereographicDensity, UniformDensity};
-pub use newton::{OmtError, OtOptions, OtReport, OtSolver};
+pub use newton::OtSolver;
+pub use options::{OmtError, OtOptions, OtReport};

@@ -8,8 +8,8 @@
 //! sparse Cholesky, then halves the step until every cell keeps at least `epsilon` mass and
 //! the mass error drops by the factor `1 - alpha / 2`. While the mass error is above 1% the
 //! step of the logarithmic masses (same matrix, another right-hand side) is tried first
-//! ([`LOG_STEP_ERROR`], ours), shortened by `1/sqrt 2` at a time down to 0.2
-//! ([`LOG_STEP_SHRINK`], ours). When that stalls, a continuation on the target masses takes
+//! ([`super::options::LOG_STEP_ERROR`], ours), shortened by `1/sqrt 2` at a time down to 0.2
+//! ([`super::options::LOG_STEP_SHRINK`], ours). When that stalls, a continuation on the target masses takes
 //! over ([`OtSolver::solve`]).
 //!
 //! A cold solve (Voronoi start) of a large mesh spends most of its iterations damped: on the
@@ -20,7 +20,7 @@
 //! of the flips: at the first full step 34809 of the 53054 sites have no cell at all (checked
 //! with qhull on the lifted points), so the damping is inherent. Three starts were measured
 //! and dropped: the coarse level's weights interpolated to every site (sites become
-//! redundant even at 1/8 of them, see [`crate::cap::coarse_level`]); weights rebuilt from the
+//! redundant even at 1/8 of them, see [`crate::omt::coarse_level`]); weights rebuilt from the
 //! coarse centroid map prolonged to every site, through the Legendre dual
 //! `h_i = (|p_i|^2 - w_i) / 2` whose gradient at a site is its cell's centroid (least squares
 //! `h_j - h_i = (p_j - p_i) . (c_i + c_j) / 2` on the mesh edges; sites redundant on the face,
@@ -30,122 +30,15 @@
 //! (hand 11 -> 10 iterations, but the 48k brain 9 -> 17: a punctured closed surface's sites
 //! fill a square, not the disk).
 //! Nor does starting each line search at twice the last accepted step (it would skip the
-//! rejected trials, ~16 ms each): the full-resolution steps then went from 15 to 26 on the
+//! rejected trials): the full-resolution steps then went from 15 to 26 on the
 //! lung lobe and 9 to 10 on the 48k brain.
 
 use super::cells::{cell_moments, integrate_masses, CellIntegrals};
 use super::density::RadialDensity;
-use super::triangulation::{RegularTriangulation, TriangulationError};
+use super::triangulation::RegularTriangulation;
 use crate::linalg::{GraphPattern, SolveError, SpdSolver};
 use crate::progress::{self, Cancelled, Progress, Stage};
-
-/// Options of the transport solver.
-#[derive(Debug, Clone)]
-pub struct OtOptions {
-    /// Stop when `sum |m_i - tau_i| / sum tau_i` is below this. Default `1e-7`.
-    pub tolerance: f64,
-    /// Maximum number of Newton iterations. Default 200.
-    pub max_iterations: usize,
-    /// Smallest damping factor tried before giving up. Default `2^-30`.
-    pub min_step: f64,
-    /// Relative mass error above which a Newton step first tries the logarithmic masses'
-    /// direction. Default [`LOG_STEP_ERROR`]; `f64::INFINITY` takes plain steps only.
-    pub log_step_error: f64,
-    /// Factor by which a rejected logarithmic step is shortened while it is longer than
-    /// [`LOG_FINE_BACKTRACKING`] (then halved). Default [`LOG_STEP_SHRINK`]; 0.5 halves.
-    pub log_step_shrink: f64,
-    /// Relative mass error below which, after a step accepted at full length, the next step
-    /// first tries the direction from the last factorization (see [`STALE_STEP_ERROR`]). Default
-    /// [`STALE_STEP_ERROR`]; 0 factors every step.
-    pub stale_step_error: f64,
-}
-
-impl Default for OtOptions {
-    fn default() -> Self {
-        Self {
-            tolerance: 1e-7,
-            max_iterations: 200,
-            min_step: 1.0 / (1u64 << 30) as f64,
-            log_step_error: LOG_STEP_ERROR,
-            log_step_shrink: LOG_STEP_SHRINK,
-            stale_step_error: STALE_STEP_ERROR,
-        }
-    }
-}
-
-impl OtOptions {
-    /// Set [`OtOptions::tolerance`].
-    pub fn with_tolerance(mut self, t: f64) -> Self {
-        self.tolerance = t;
-        self
-    }
-    /// Set [`OtOptions::max_iterations`].
-    pub fn with_max_iterations(mut self, n: usize) -> Self {
-        self.max_iterations = n;
-        self
-    }
-}
-
-/// Errors of the transport stage.
-#[derive(Debug, Clone, thiserror::Error)]
-#[non_exhaustive]
-pub enum OmtError {
-    /// The sites could not be triangulated.
-    #[error(transparent)]
-    Triangulation(#[from] TriangulationError),
-    /// The Newton system could not be solved.
-    #[error("optimal transport Newton system: {0}")]
-    Linear(#[from] SolveError),
-    /// Damping reached the minimum step without progress.
-    #[error("optimal transport stalled at iteration {iteration} with relative mass error {error:.3e} (the initial map squeezes part of the surface too much: for a closed surface a larger lambda spreads it; else report this mesh)")]
-    Stalled {
-        /// Iteration.
-        iteration: usize,
-        /// Relative L1 mass error reached.
-        error: f64,
-    },
-    /// No convergence within the iteration budget.
-    #[error("optimal transport did not converge in {iterations} iterations (relative mass error {error:.3e} > tolerance {tolerance:.1e}); raise max_iterations or the tolerance")]
-    NotConverged {
-        /// Iterations done.
-        iterations: usize,
-        /// Error reached.
-        error: f64,
-        /// Requested tolerance.
-        tolerance: f64,
-    },
-    /// Bad arguments (lengths, non-positive masses).
-    #[error("invalid transport problem: {0}")]
-    Invalid(String),
-    /// Cancelled through the progress callback.
-    #[error(transparent)]
-    Cancelled(#[from] Cancelled),
-}
-
-/// What the solver did.
-#[derive(Debug, Clone, Default, serde::Serialize)]
-pub struct OtReport {
-    /// Newton iterations.
-    pub iterations: usize,
-    /// Final relative L1 mass error.
-    pub mass_error: f64,
-    /// Largest relative error of a single cell.
-    pub max_cell_error: f64,
-    /// Edge flips done to keep the triangulation regular.
-    pub flips: usize,
-    /// Symbolic factorizations of the Newton matrix (the rest reused one).
-    pub symbolic_factorizations: usize,
-    /// Smallest damping factor accepted.
-    pub min_step: f64,
-    /// Continuation steps taken after plain Newton stalled (0 when it did not).
-    pub continuation_steps: usize,
-    /// Newton steps taken along the logarithmic masses' direction (see
-    /// [`OtOptions::log_step_error`]).
-    pub log_steps: usize,
-    /// Newton steps taken with the previous step's factorization (see
-    /// [`OtOptions::stale_step_error`]).
-    pub stale_steps: usize,
-}
+use super::options::{OmtError, OtOptions, OtReport, LOG_FINE_BACKTRACKING, LOG_MIN_STEP, STALE_STEP_GAIN};
 
 enum NewtonFailure {
     Stalled { iteration: usize, error: f64 },
@@ -153,66 +46,6 @@ enum NewtonFailure {
     Cancelled(Cancelled),
 }
 
-/// Relative mass error above which each Newton step first tries the step of the logarithmic
-/// masses by default ([`OtOptions::log_step_error`]), `H dw = m (ln(tau / m) + c)` (the
-/// Newton step of `ln m(w) = ln tau + c`, with the constant `c` that keeps the right-hand
-/// side's sum 0 as the Hessian's range requires), and
-/// falls back to the plain step `H dw = tau - m` when no step length down to
-/// [`LOG_MIN_STEP`] is accepted. From the Voronoi start most cells must grow or shrink by
-/// large factors; the plain step asks a cell 100 times too small for 99 times its mass, and
-/// the cells it squeezes out vanish: on the hand the first accepted lengths were 1/64, 1/16,
-/// 1/8, 1/4, 1/4, 1/2, 1/2, against 1/4, 1/4, 1/4, 1/2 along the logarithmic steps. Below the
-/// threshold the plain step converges quadratically (the logarithmic one, measured, did
-/// not). Measured 2026-12-01 (full-resolution + coarse-search Newton steps): hand 10+37 ->
-/// 8+37, 48k brain 8+35 -> 5+30, lung 14+34 -> 7+30, closed hippocampus 12+36 -> 8+35, bunny
-/// 45 -> 30, bird skull 36 -> 30, 41k ellipsoid 7+35 -> 6+30, open meshes within one step;
-/// distortions equal to 3 digits. Alone, without the fallback,
-/// the logarithmic step stalled on the closed hippocampus's first coarse solve (its cells by
-/// the puncture must grow by orders of magnitude) and continuation took over.
-pub const LOG_STEP_ERROR: f64 = 0.01;
-
-/// Shortest step length tried along the logarithmic direction (see [`LOG_STEP_ERROR`]).
-pub const LOG_MIN_STEP: f64 = 1.0 / 64.0;
-
-/// Default of [`OtOptions::log_step_shrink`]: the logarithmic step's trial lengths are 1,
-/// 0.71, 0.5, 0.35, 0.25, 0.18, then halved. A cold full-resolution solve accepts its first
-/// steps at a quarter to a half of the logarithmic direction, and each rejected trial is cheap
-/// (most fail in the flips, 4-8 ms on the hand) while each accepted step costs a
-/// factorization: on the hand the damped steps went from 1/4, 1/4, 1/4, 1/2 (mass error 1.07
-/// -> 0.27 in four steps) to 0.35, 0.5, 0.71 (1.07 -> 0.18 in three), and the full-resolution
-/// Newton steps from 8 to 6 (transport 1.22-1.39 -> 0.96-1.16 s, two alternating runs,
-/// 2026-12-01; it also ends more accurate, 2e-6 instead of 5.5e-6); the 41k ellipsoid 6 ->
-/// 5; the other shared meshes the same or one or two search steps fewer, their distortions
-/// equal to 3 digits but the bird skull's mean |d_area| (0.1279 -> 0.1286). The hand's mean
-/// |d_area| went 0.0272 -> 0.0276: within what any change of the transport's last digits
-/// does to it through the fold repair and the refinement (halving, but solved to 1e-9 or
-/// 3e-6 instead of 1e-5: 0.0279 and 0.0281).
-pub const LOG_STEP_SHRINK: f64 = std::f64::consts::FRAC_1_SQRT_2;
-
-/// Default of [`OtOptions::stale_step_error`]: below a 1% relative mass error (where the
-/// plain step converges quadratically, [`LOG_STEP_ERROR`]) and after a step accepted at full
-/// length, a step first tries the plain direction `H_old dw = tau - m` with the last
-/// factorization (a chord step: two triangular solves instead of an ordering, a symbolic
-/// analysis and a factorization), kept when it lowers the error by [`STALE_STEP_GAIN`] at
-/// full length; otherwise the step factors its own Hessian as before. So close to the
-/// solution few edges flip and the Hessian changes little: the hand's last full-resolution
-/// step took its mass error from 1.44e-3 to 6.9e-5 this way (a fresh one: 2e-6; the
-/// tolerance is 1e-3), transport 0.682/0.740 -> 0.642/0.681 s (min/median of seven
-/// alternating runs, 2026-12-01); the coarse radius searches take a few of them too (hand 37
-/// -> 41 steps, 4 of them stale). At 5% the steps tried from 1.8e-2 and 3.3e-2 failed (48k
-/// brain, hand) and cost a trial each. Measured on the shared meshes and the ellipsoids:
-/// the distortions the same to 1% (hand 0.02756 -> 0.02772) but the small bunny's, which
-/// moves with the transport's last digits (0.0367 -> 0.0397). (Stale directions while the
-/// steps are damped were measured and dropped: see the docs of `OtSolver::update_pattern`.)
-pub const STALE_STEP_ERROR: f64 = 0.01;
-
-/// A step with the last factorization is kept when it divides the mass error by at least
-/// `1 / STALE_STEP_GAIN` (a fresh step at this stage divides it by 20 to 700; a chord step
-/// that gains less would cost more steps than it saves factorizations).
-pub const STALE_STEP_GAIN: f64 = 0.1;
-
-/// Step length below which rejected logarithmic steps are halved (see [`LOG_STEP_SHRINK`]).
-pub const LOG_FINE_BACKTRACKING: f64 = 0.2;
 
 /// `m_i (ln(tau_i / m_i) + c)`, with `c` such that the entries sum to 0 (cells without mass
 /// take `tau_i - m_i`).
@@ -231,16 +64,10 @@ const MOVING_PATTERN: f64 = 0.02;
 
 /// Above this many sites the Newton matrices are ordered by geometric nested dissection on
 /// the sites ([`crate::linalg::nested_dissection`]) instead of AMD: each step's pattern is new
-/// (flips), so the ordering is computed every step, and AMD's was as long as the numeric
-/// factorization. Transport, one run each (2026-11-30): hand 2.08 -> 1.80 s, 41k ellipsoid
-/// 1.53 -> 1.25 s, 101k disk 1.19 -> 1.00 s, 1M disk 16.6 -> 12.4 s (peak memory 3.27 ->
-/// 3.08 GB); the maps move within the transport tolerance's reach (hand mean |d_area|
-/// 0.0273 -> 0.0277, 48k brain unchanged); below 20k sites no difference beyond the noise
-/// (lung 0.74 -> 0.68 s, face 0.27 -> 0.30 s; again with the splits computed once per
-/// solver: seven shared meshes unchanged), so the small systems keep AMD. The flattening
-/// keeps AMD: ordered by the vertices' 3D positions the 48k brain's flattening went from
-/// 0.76 to 1.44 s (a folded surface), by the harmonic map's planar positions the hand's from
-/// 0.87 to 1.2-1.3 s.
+/// (flips), so the ordering is computed every step, and AMD's took as long as the numeric
+/// factorization. Below this the two do not differ measurably, so the small systems keep AMD.
+/// The flattening keeps AMD too: on a folded surface's 3D positions, or on the harmonic map's
+/// planar ones, the dissection's cuts are long and its factor larger.
 pub const NESTED_DISSECTION_SITES: usize = 20_000;
 
 /// A semi-discrete transport solver for fixed sites on the disk of radius `r`; it keeps its
@@ -310,7 +137,7 @@ impl<'d> OtSolver<'d> {
     /// normalised as in [`OtSolver::solve`]): a predicted warm start. Their integrals are kept
     /// for the next solve. Returns whether they were taken. (Also requiring a smaller mass
     /// error than the current weights' cost one more integration per call and changed no
-    /// choice on the shared meshes, 2026-12-01.)
+    /// choice on the shared meshes.)
     pub fn try_weights(&mut self, weights: &[f64], target: &[f64]) -> bool {
         if weights.len() != self.tri.weights.len() || target.len() != weights.len() {
             return false;
@@ -547,12 +374,12 @@ impl<'d> OtSolver<'d> {
     /// it holds 20% more than them, so the extra fill stays small, and when more than
     /// [`MOVING_PATTERN`] of the current edges are new: then the pattern is moving (the damped
     /// first steps of a cold solve) and a union would only add fill to matrices analysed anew
-    /// anyway (hand at full resolution: the factor grew from 2.5M to 3.3M entries; transport
-    /// 2.40-2.49 s against 2.22-2.31 s in three runs each). (Keeping the AMD ordering
+    /// anyway (hand at full resolution: the factor grew from 2.5M to 3.3M entries, and the
+    /// transport was slower). (Keeping the AMD ordering
     /// of an earlier pattern and redoing only the elimination tree was measured and is no
     /// good: on the hand the factor grows from 2.6M to 4M-16M entries after a few flips.
     /// Nor is skipping factorizations by conjugate gradients preconditioned with the last
-    /// factor: it needs 8-20 iterations per step at 8 ms each, no cheaper than factoring,
+    /// factor: it needs 8-20 iterations per step, no cheaper than factoring,
     /// and its inexact steps tripled the Newton iterations on the 48k brain.)
     fn update_pattern(&mut self, cells: &CellIntegrals) -> Result<(), SolveError> {
         let current = interior_edge_keys(self.tri.sites.len(), &cells.edges);
@@ -583,7 +410,7 @@ impl<'d> OtSolver<'d> {
     }
 
     /// Solve `H dw = tau - m` with `w_0` pinned, and with `logarithmic` also the step of the
-    /// logarithmic masses (see [`LOG_STEP_ERROR`]) with the same factorization.
+    /// logarithmic masses (see [`super::options::LOG_STEP_ERROR`]) with the same factorization.
     fn newton_direction(&mut self, cells: &CellIntegrals, tau: &[f64], logarithmic: bool) -> Result<(Vec<f64>, Option<Vec<f64>>), SolveError> {
         let n = tau.len();
         if n > 1 {
@@ -607,7 +434,7 @@ impl<'d> OtSolver<'d> {
 
     /// The plain step `H dw = tau - m` (and with `logarithmic` the logarithmic one) with the
     /// last factorization of `H`, `w_0` pinned: [`OtSolver::newton_direction`]'s solve, and
-    /// alone the chord step of [`STALE_STEP_ERROR`].
+    /// alone the chord step of [`super::options::STALE_STEP_ERROR`].
     fn solve_directions(&self, cells: &CellIntegrals, tau: &[f64], logarithmic: bool) -> Result<(Vec<f64>, Option<Vec<f64>>), SolveError> {
         let n = tau.len();
         if n == 1 {
@@ -624,8 +451,8 @@ impl<'d> OtSolver<'d> {
 }
 
 /// The keys `(i << 32) | j` of the edges `(i, j, _)` (`i < j`) with `i > 0`, sorted without
-/// repeats: bucketed by `i` (a counting sort), each bucket's few `j` sorted in place. Sorting
-/// the hand's 160k keys took 5-6 ms of every Newton step.
+/// repeats: bucketed by `i` (a counting sort), each bucket's few `j` sorted in place, which
+/// is much cheaper than a general sort of every Newton step's keys.
 fn interior_edge_keys(n: usize, edges: &[(u32, u32, f64)]) -> Vec<u64> {
     let mut start = vec![0usize; n + 1];
     for &(i, _, _) in edges.iter().filter(|e| e.0 > 0) {

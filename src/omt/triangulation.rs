@@ -68,10 +68,9 @@ pub struct RegularTriangulation {
 /// STUCK_EDGES_RATIO` flips that could not be made (`n` sites). The transport's line search
 /// tries long steps first and most of them make sites redundant, which the flips only find
 /// out at the end: on the hand's full-resolution solve every accepted trial met no stuck
-/// edge, the rejected ones 5 to 320 000 after up to 123 000 flips. Giving up early changed no
-/// Newton iteration count and no map on the eleven shared meshes and two synthetic ones
-/// (2026-11-30) and took the hand's transport from 2.19 to 2.04 s, the 41k ellipsoid's from
-/// 1.58 to 1.29 s. A trial refused too early would only shorten that Newton step.
+/// edge, the rejected ones up to hundreds of thousands. Giving up early changed no Newton
+/// iteration count and no map on the shared and synthetic meshes; a trial refused too early
+/// would only shorten that Newton step.
 pub const STUCK_EDGES_RATIO: usize = 64;
 
 /// See [`STUCK_EDGES_RATIO`].

@@ -7,12 +7,12 @@
 //! the stretched triangles cut across the surface's curvature and the flat areas drift from
 //! the cap's. This step moves the cap vertices in the plane of the map (the rim and, on closed
 //! surfaces, the bottom stay) so that the pulled-back triangles' areas approach the cap
-//! triangles' areas: the same Gauss-Seidel as [`crate::cap::area_refine`], with the areas
+//! triangles' areas: the same Gauss-Seidel as [`crate::refine::area_refine`], with the areas
 //! measured on the surface through the inverse map. Every accepted move keeps the planar
 //! triangles' orientation, so the result stays an embedding pulled back from the cap.
 
 use super::locate::Locator;
-use crate::cap::area_refine::{refine_towards, AreaRefineReport, RefineOptions};
+use crate::refine::area_refine::{refine_towards, AreaRefineReport, RefineOptions};
 use crate::mesh::TriMesh;
 use std::sync::atomic::{AtomicU32, Ordering};
 

@@ -8,9 +8,7 @@
 //! thousands of triangles in a cell; the hierarchy splits at the median and adapts.
 //!
 //! Each triangle's barycentric map is precomputed in the hierarchy's leaf order, so a leaf's
-//! containment tests read one contiguous block (2026-12-01, remesh area equalization, medians
-//! of six alternating runs: MEG helmet 27.8 -> 21.7 ms, bunny 33.5 -> 25.8 ms, hand 69 -> 70
-//! ms; the same remeshes to rounding).
+//! containment tests read one contiguous block (CHANGELOG.md has the measurement).
 
 /// A located point: the triangle and barycentric coordinates (non-negative, sum 1).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -267,8 +265,8 @@ impl<'a> Locator<'a> {
     }
 }
 
-/// The depth-first stack of a query, on the call stack (with a heap vector per query,
-/// allocation was 8% of the MEG helmet's remesh profile). The hierarchy's median splits keep
+/// The depth-first stack of a query, on the call stack (a heap vector per query showed in
+/// the remesh's profile). The hierarchy's median splits keep
 /// its depth below `log2(triangles)` (at most 32), and a descent holds at most one pending
 /// sibling per level.
 struct NodeStack {

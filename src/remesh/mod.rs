@@ -7,8 +7,8 @@ pub mod locate;
 pub mod pullback;
 pub mod shape;
 
-use crate::cap::area_refine::AreaRefineReport;
-use crate::cap::{parameterize, ParamOptions, ParamReport};
+use crate::refine::area_refine::AreaRefineReport;
+use crate::param::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
 use crate::cap::stereographic;
 use crate::mesh::topology::is_boundary_vertex;
@@ -186,7 +186,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         return Err(Error::InvalidOption(format!("a cap mesh of about {asked} faces is more than capmesh remeshes (at most {MAX_GRID_FACES}); ask for fewer faces, rings or sectors")));
     }
     let map = parameterize(mesh, &options.param, progress)?;
-    let closed = map.report.kind != SurfaceKind::OpenDisk.to_string();
+    let closed = map.report.kind != SurfaceKind::OpenDisk;
     let z_star = map.report.z_star.ok_or_else(|| Error::InvalidOption("remeshing needs a spherical cap domain, not the planar disk".into()))?;
     progress::check(progress, Stage::Remesh, 0.0, "pulling the cap mesh back")?;
     let t_pull = Instant::now();

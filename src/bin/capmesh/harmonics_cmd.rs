@@ -2,7 +2,8 @@
 //! reconstructed surface, the coefficients (JSON) and a report of the error per order.
 
 use crate::{read, refuse_overwrite, write_json};
-use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::cap::Domain;
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::harmonics::{analyze_map, basis_degree, HarmonicFit, HarmonicsOutput};
 use capmesh::io;
 use serde::Serialize;

@@ -15,7 +15,8 @@ mod harmonics_cmd;
 mod map_args;
 mod shape_cmd;
 
-use capmesh::cap::{parameterize, Domain, ParamOptions};
+use capmesh::cap::Domain;
+use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io;
 use capmesh::remesh::{remesh, CapGrid, RemeshOptions};
 use capmesh::mesh;
@@ -183,8 +184,8 @@ fn main() -> ExitCode {
     }
     // The whole command on a worker thread of rayon's pool, so that the parallel loops of the
     // reading, the metrics and the writing are split in place too (the library's entry
-    // points do this for the pipeline itself, see `capmesh::pool`): MEG helmet remesh 0.153
-    // -> 0.138 s against the library's alone (medians of 25 alternating runs).
+    // points do this for the pipeline itself, see `capmesh::pool`); measurably faster on the
+    // small meshes than the library's alone.
     match rayon::scope(|_| run(cli)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(msg) => {
@@ -224,12 +225,12 @@ pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(
 /// Mean |d_area| above which the map is reported as poor on stderr (the bundled meshes map
 /// at 0.008-0.13; a failed fold repair gives 0.4 and more); closed surfaces are mapped again
 /// with a larger lambda above it first.
-const POOR_AREA_DISTORTION: f64 = capmesh::cap::lambda_fallback::POOR_MAP_AREA_DISTORTION;
+const POOR_AREA_DISTORTION: f64 = capmesh::param::POOR_MAP_AREA_DISTORTION;
 
 /// Say on stderr when a map is fold-free but far from area preserving, rather than let a poor
 /// result pass silently, and when a closed surface needed a larger `lambda` than asked.
 fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
-    if let capmesh::cap::parameterize::FlattenReport::Closed(used) = &r.flatten {
+    if let capmesh::param::FlattenReport::Closed(used) = &r.flatten {
         for tried in &r.lambda_fallbacks {
             eprintln!("warning: {}: not kept: lambda = {}: {}", input.display(), tried.lambda, tried.reason);
         }
@@ -242,7 +243,7 @@ fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
             );
         }
     }
-    if r.domain == "adaptive" && r.area_distortion.mean_abs > POOR_AREA_DISTORTION {
+    if r.domain == Domain::Adaptive && r.area_distortion.mean_abs > POOR_AREA_DISTORTION {
         eprintln!(
             "warning: {}: mean |d_area| = {:.3} is far from area preserving (fold repair moved a vertex by {:.0}% of the disk radius); \
              try --puncture-end bottom or top, another --smoothing or --lambda, and check the report's untangle and smoothing_trials",
@@ -320,7 +321,7 @@ fn run(cli: Cli) -> Result<(), String> {
                     write_seconds: f64,
                     optimize: capmesh::remesh::Optimize,
                     shape: capmesh::remesh::shape::ShapeReport,
-                    area_equalization: capmesh::cap::area_refine::AreaRefineReport,
+                    area_equalization: capmesh::refine::area_refine::AreaRefineReport,
                     parameterization: &'a capmesh::ParamReport,
                 }
                 let q = &rep.quality;

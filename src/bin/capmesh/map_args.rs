@@ -2,7 +2,8 @@
 //! and its `lambda`, the regularisation and refinement of the transport map, the puncture end
 //! of closed surfaces, the radius search's coarse level), and how they set [`ParamOptions`].
 
-use capmesh::cap::{OpenInitialMap, ParamOptions, PunctureEnd, Smoothing};
+use capmesh::param::{OpenInitialMap, ParamOptions, PunctureEnd};
+use capmesh::refine::Smoothing;
 
 /// Parameterization options of the command line (each defaults to the library's default).
 #[derive(clap::Args, Debug, Clone)]
@@ -15,7 +16,7 @@ pub struct MapArgs {
     #[arg(long, default_value_t = capmesh::flatten::closed::DEFAULT_LAMBDA)]
     pub lambda: f64,
     /// lambda of the composite initial map of open surfaces.
-    #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_OPEN_LAMBDA)]
+    #[arg(long, default_value_t = capmesh::param::DEFAULT_OPEN_LAMBDA)]
     pub open_lambda: f64,
     /// Closed surfaces: keep the result of --lambda (an error or a poor map) instead of
     /// mapping again with a larger lambda (0.5, 0.8, then 1) when the transport stalls on an
@@ -28,7 +29,7 @@ pub struct MapArgs {
     #[arg(long, default_value = "auto")]
     pub smoothing: Smoothing,
     /// Sweeps of the face-level area refinement after transport (0 is the paper's map).
-    #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_AREA_REFINEMENT)]
+    #[arg(long, default_value_t = capmesh::param::DEFAULT_AREA_REFINEMENT)]
     pub area_refinement: usize,
     /// Closed surfaces: puncture at the best end of the principal axis (searches the
     /// radius from both, finishes the better), at the bottom (lower input Z) or at the top.
@@ -38,7 +39,7 @@ pub struct MapArgs {
     /// level of at most max(this, n / 16) sites (closed surfaces: max(min(this, max(n /
     /// 4, 250)), n / 16)), when that is fewer than n / 2, and solves the full problem at
     /// r* only (0: search at full resolution, the paper's method).
-    #[arg(long, default_value_t = capmesh::cap::parameterize::DEFAULT_SEARCH_SITES)]
+    #[arg(long, default_value_t = capmesh::param::DEFAULT_SEARCH_SITES)]
     pub search_sites: usize,
 }
 

@@ -4,8 +4,9 @@
 //! command then exits non-zero, after writing the whole CSV.
 
 use crate::read;
-use capmesh::cap::parameterize::FlattenReport;
-use capmesh::cap::{Domain, ParamOptions};
+use capmesh::param::FlattenReport;
+use capmesh::cap::Domain;
+use capmesh::param::ParamOptions;
 use capmesh::harmonics::{analyze, HarmonicsOptions, HarmonicsReport};
 use capmesh::io::Format;
 use capmesh::mesh::SurfaceKind;
@@ -135,10 +136,10 @@ fn csv_line(row: &Row) -> String {
     let file = quote(&row.file.display().to_string());
     match &row.result {
         Ok((faces, r)) => {
-            let kind = if r.param.kind == SurfaceKind::OpenDisk.to_string() { "open" } else { "closed" };
+            let kind = if r.param.kind == SurfaceKind::OpenDisk { "open" } else { "closed" };
             let [s1, s2, s3] = r.singular_values;
             // The composition factor a closed surface was mapped with (another than asked
-            // when it fell back, see `cap::lambda_fallback`).
+            // when it fell back, see `param::lambda_fallback`).
             let lambda = match (&r.param.flatten, kind) {
                 (FlattenReport::Closed(f), "closed") => f.lambda.to_string(),
                 _ => String::new(),

@@ -7,11 +7,11 @@
 //! bunny from 10 times and the closed hippocampus from 20 times had hundreds of vertices
 //! mapped within `1e-12` of each other; the power diagram's weights then need differences
 //! below the resolution of `f64`, the flips of every Newton step fail however short the step,
-//! and the transport stops with [`OmtError::Stalled`] at a mass error near `1e-4` (measured
-//! 2026-12-01: bunny x10 fails at `lambda` 0.2 and 0.35, maps at 0.5; bunny x20 needs 0.8;
-//! hippocampus x20 maps from 0.35; open surfaces, whose whole boundary lies on the circle,
-//! mapped up to x20 at their default `lambda`). Stretched 50 times, the bunny mapped, but
-//! with a mean `|d_area|` of 2.48 after a fold repair that moved vertices across the disk. A
+//! and the transport stops with [`OmtError::Stalled`] at a mass error near `1e-4` (the bunny
+//! stretched 10 times maps from `lambda` 0.5, 20 times from 0.8; open surfaces, whose whole
+//! boundary lies on the circle, map up to x20 at their default `lambda`). Stretched 50 times,
+//! the bunny mapped, but with a mean `|d_area|` of 2.48 after a fold repair that moved
+//! vertices across the disk. A
 //! larger `lambda` keeps more of the stretch-energy map, which spreads the area instead of
 //! squeezing it, so [`super::parameterize()`] maps a closed surface again with the next value
 //! of [`ParamOptions::closed_lambda_fallbacks`] when its transport stalls or its map is poor
@@ -20,34 +20,15 @@
 //! [`super::ParamReport::lambda_fallbacks`]. Meshes that map well at the first `lambda` (all
 //! the shared ones) pay nothing.
 
-use super::parameterize::ParamOptions;
+use super::options::ParamOptions;
 use crate::error::Error;
-use crate::mesh::{repair, validate, SurfaceKind, TriMesh};
 use crate::omt::OmtError;
-
-/// The default [`ParamOptions::closed_lambda_fallbacks`]: each tried in turn, above the
-/// `lambda` that failed. 0.5 and 0.8 rescued the stretched meshes above (with the radius
-/// search started at its bound, 2026-12-02: bunny x10 at 0.5, x50 at 1); 1 (the stretch
-/// energy map alone) is the last resort because the fit of the map's angles is worst there.
-pub const DEFAULT_LAMBDA_FALLBACKS: [f64; 3] = [0.5, 0.8, 1.0];
 
 /// Mean `|d_area|` above which a closed surface's map counts as poor and the next `lambda`
 /// is tried (the command line warns above it too). The shared meshes map at 0.008-0.13; the
 /// bunny stretched 50 times along its axis mapped at 2.48 with `lambda` 0.2, 1.94 with 0.5,
 /// stalled at 0.8 and mapped at 0.17 with 1.
 pub const POOR_MAP_AREA_DISTORTION: f64 = 0.3;
-
-/// One `lambda` tried for a closed surface whose map was not kept: its transport failed, or
-/// its map was poor and a later one was better.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct LambdaFallback {
-    /// The composition factor tried.
-    pub lambda: f64,
-    /// Why it was not kept (the transport's error, or the map's distortion).
-    pub reason: String,
-    /// The map's mean `|d_area|` when there was a map.
-    pub mean_abs_area_distortion: Option<f64>,
-}
 
 /// Whether `error` is the transport losing precision on a too compressive initial map (the
 /// failure a larger `lambda` can cure), as opposed to bad input or a cancellation.
@@ -58,13 +39,6 @@ pub(super) fn is_precision_failure(error: &Error) -> bool {
 /// The next `lambda` to try after `failed`, if any.
 pub(super) fn next_lambda(options: &ParamOptions, failed: f64) -> Option<f64> {
     options.closed_lambda_fallbacks.iter().copied().filter(|&l| l > failed && l <= 1.0).reduce(f64::min)
-}
-
-/// Whether `mesh`, welded as the parameterization welds it, is a closed genus-0 surface (the
-/// only kind whose initial map `closed.lambda` shapes).
-pub(super) fn is_closed(mesh: &TriMesh, options: &ParamOptions) -> bool {
-    let welded = repair::weld_coincident(mesh, options.weld_tolerance * mesh.bounding_box_diagonal());
-    matches!(validate(&welded.mesh), Ok((SurfaceKind::ClosedSphere, _)))
 }
 
 #[cfg(test)]

@@ -165,10 +165,9 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
 /// compresses unevenly, `k` rings are a long, non-convex strip in the plane, and a Tutte solve
 /// inside a non-convex outline folds faces at the rim (Floater's guarantee needs a convex
 /// boundary); two of the three smoothing candidates went through every attempt to `k = 64`
-/// (25k-30k vertices, 0.2 s each). With the discs, convex in the plane, the same folds went
-/// with regions of 1k-8k vertices (repairs 0.03-0.09 s). Discs alone left one fold next to
-/// the puncture of the 164k ellipsoid at every size up to the whole mesh (2.3 s), which the
-/// rings repair.
+/// (25k-30k vertices). With the discs, convex in the plane, the same folds went with regions
+/// of 1k-8k vertices. Discs alone left one fold next to the puncture of the 164k ellipsoid
+/// at every size up to the whole mesh, which the rings repair.
 struct RegionGrowth {
     /// The ring region and how many rings it has grown.
     ring: Vec<bool>,

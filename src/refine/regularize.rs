@@ -11,7 +11,7 @@
 //! Large systems are solved by conjugate gradients from the centroids
 //! ([`ITERATIVE_UNKNOWNS`]), the others (and any whose gradients stall) by sparse Cholesky.
 
-use super::planar_transport::TransportMap;
+use crate::omt::planar_transport::TransportMap;
 use super::untangle::{untangle, UntangleReport};
 use crate::linalg::{jacobi_cg2, CotanWeights, SolveError, SpdSolver};
 use faer::sparse::SparseColMat;
@@ -152,15 +152,11 @@ impl<'a> CentroidSmoother<'a> {
 
 /// Above this many free vertices the smoothing systems are solved by conjugate gradients
 /// (Jacobi preconditioner, from the centroids, [`crate::linalg::jacobi_cg2`]) instead of a
-/// sparse Cholesky factorization, which each candidate `kappa` needs anew. Measured
-/// 2026-12-01 at the relative residual [`ITERATIVE_TOLERANCE`] (positions within `1e-10` of
-/// the disk's radius of the factorization's): 53k hand, 14 to 42 iterations in 11-30 ms
-/// against 57-95 ms per factorization and 48 ms for the shared symbolic one; 48k brain, 28
-/// to 67 iterations in 19-44 ms against 47 ms. On the smaller meshes the factorization is
-/// as fast or faster (face, 17k vertices: 8-35 ms against 13-23 ms), and on the lung lobe,
-/// whose cotangent weights span many orders of magnitude, the gradients need 1000-1800
-/// iterations: the small systems, and any that does not converge within
-/// [`ITERATIVE_MAX_ITERATIONS`], are factored.
+/// sparse Cholesky factorization, which each candidate `kappa` needs anew: on the large
+/// meshes a few dozen iterations at [`ITERATIVE_TOLERANCE`] beat a factorization. The small
+/// systems, where the factorization is as fast, and any that does not converge within
+/// [`ITERATIVE_MAX_ITERATIONS`] (a lung lobe's cotangent weights span many orders of
+/// magnitude) are factored.
 pub const ITERATIVE_UNKNOWNS: usize = 20_000;
 
 /// Relative residual at which the smoothing's conjugate gradients stop.
@@ -229,9 +225,8 @@ pub struct Regularised {
 /// a tenth of the radius long; the Dirichlet term drags them, the fold repair's local solves
 /// cannot untangle what that folds, and its whole-mesh solve (four fixed corners) squeezes
 /// the map. Measured on the synthetic 41k ellipsoid at `kappa = 3`: mean `|d_area|` 0.59 with
-/// no ring held, 0.0062 with 3 (6 and 10 rings: 0.0060, 0.0058); the 164k ellipsoid's
-/// smoothing search went from 22 s (every `kappa > 0` collapsed) to 2 s, its map from 0.010
-/// to 0.008. Open surfaces hold none: the hippocampal sheet lost (0.0219 -> 0.0235).
+/// no ring held, 0.0062 with 3 (6 and 10 rings: 0.0060, 0.0058); on the 164k ellipsoid
+/// every `kappa > 0` collapsed without it. Open surfaces hold none: the hippocampal sheet lost (0.0219 -> 0.0235).
 pub const PUNCTURE_HELD_RINGS: usize = 3;
 
 /// Lifts planar positions onto the domain where areas are measured (the cap or the disk).
@@ -299,7 +294,7 @@ const AUTO_START: usize = 4;
 /// next one beyond it (two at a time, in parallel). On the eleven shared meshes the measured
 /// distortion is unimodal on the grid, so this finds the grid's minimum with 3 to 5
 /// evaluations instead of 7; the ones left out are the most expensive (small `kappa` leaves
-/// hundreds of folds to repair on the hand: regularisation 1.4 -> 0.8 s). When the best
+/// hundreds of folds to repair on the hand). When the best
 /// found is still poor (mean `|d_area|` above [`WALK_TRUST`], or a fold left) the rest of the
 /// grid is evaluated too: on the synthetic 164k-vertex ellipsoid every `kappa > 0` collapses
 /// (mean `|d_area|` 1.5 to 2.4) and only the plain map (`kappa = 0`) is good.

@@ -9,18 +9,11 @@
 //! the disk scaled to radius 1 interpolated linearly in `ln r`, or extrapolated), and starts
 //! from them when the triangulation reaches them and every cell keeps mass
 //! ([`OtSolver::try_weights`]; the radius search's golden and parabolic steps land between
-//! earlier radii). Measured 2026-12-01 on the shared meshes: Newton steps of the radius
-//! search, open surfaces: MEG helmet (full resolution) 23 -> 16, face 24 -> 16, hippocampal
-//! sheet 25 -> 19, left ventricle 34 -> 27, hand 41 -> 32 (coarse levels); closed surfaces
-//! 2-4 fewer of 33-37 (their search jumps between far radii towards the bound, where the
-//! prediction helps less). Each try costs a flip pass and an integration (about 1 ms on the
-//! helmet's 2171 sites, half a Newton step): transport min/median of seven alternating runs,
-//! helmet 0.050/0.062 -> 0.036/0.055 s, face 0.157/0.198 -> 0.145/0.169 s, left ventricle
-//! 0.065/0.070 -> 0.059/0.065 s, hand 0.712/0.771 -> 0.658/0.773 s. `Z*` moves within the
-//! search's tolerance (face -0.0781 -> -0.0784); mean `|d_area|` within 0.3%, the remeshes'
-//! `d_face_rel` within 1.5% (hand 0.1061 -> 0.1077, with `r*`'s last digits).
+//! earlier radii). That saves a fifth to a third of an open surface's search Newton steps
+//! (fewer on closed surfaces, whose search jumps between far radii) for a flip pass and an
+//! integration per try; `Z*` moves within the search's tolerance.
 
-use crate::omt::{CellIntegrals, OmtError, OtOptions, OtReport, OtSolver, RadialDensity};
+use super::{CellIntegrals, OmtError, OtOptions, OtReport, OtSolver, RadialDensity};
 use crate::progress::Progress;
 
 /// The transport map at one radius.

@@ -21,7 +21,7 @@
 
 use crate::mesh::geometry::signed_area_2d;
 use crate::mesh::topology::neighbors_of_faces;
-use crate::omt::triangulation::Site;
+use super::triangulation::Site;
 use spade::{DelaunayTriangulation, Point2, PositionInTriangulation, Triangulation};
 
 /// Coarse sites, their target masses and the map from coarse to fine positions.

@@ -1,0 +1,130 @@
+//! The adaptive area-preserving parameterization `f = phi^-1 o h_r* o r* g` (paper Eq. 14) and
+//! its fixed-domain baselines.
+//!
+//! Open disks (Sec. 3.1): disk conformal map `g`, then for each radius `r` the transport map
+//! `h_r` on the disk of radius `r` with the stereographic density; `r*` minimises the
+//! area-normalised mean of `|mu|^2` of `(h_r o r g)^-1` (Eq. 12) by Brent's method over `Z*`
+//! in `[-0.995, 0.995]` (closed surfaces: run in the variable `atanh(Z*)`, tolerance on
+//! `Z*`; large meshes: on a coarse level of transport sites, [`crate::omt::coarse_level`], with
+//! only `r*` solved at full resolution); then the inverse stereographic projection.
+//!
+//! The steps, one file each: [`options`], `prepare` (check, weld and classify the mesh
+//! once), `search` (initial disk map and radius search), `finish` (transport at `r*`,
+//! regularisation, fold repair, area refinement, report), `puncture_end` (both ends of a
+//! closed surface) and [`lambda_fallback`] (a larger `lambda` when the transport fails);
+//! [`report`] holds what they measure. The files import downwards only: this one calls
+//! the fallbacks and the puncture ends, which call `search` and `finish`.
+
+pub(crate) mod finish;
+pub mod lambda_fallback;
+pub mod options;
+pub(crate) mod prepare;
+pub(crate) mod puncture_end;
+pub mod report;
+pub(crate) mod search;
+
+pub use crate::cap::CapMap;
+pub use lambda_fallback::POOR_MAP_AREA_DISTORTION;
+pub use options::{
+    OpenInitialMap, ParamOptions, PunctureEnd, DEFAULT_AREA_REFINEMENT, DEFAULT_LAMBDA_FALLBACKS, DEFAULT_OPEN_FACTORED_ITERATIONS,
+    DEFAULT_OPEN_LAMBDA, DEFAULT_SEARCH_SITES, MASS_TOLERANCE, TRANSPORT_TOLERANCE,
+};
+pub use report::{FlattenReport, LambdaFallback, ParamReport, PunctureTrial, RadiusSample};
+pub use search::{search_level_sites, MIN_SEARCH_SITES, SEARCH_RATIO, SMALL_SEARCH_RATIO};
+
+use crate::cap::Domain;
+use crate::error::Error;
+use crate::mesh::{SurfaceKind, TriMesh};
+use crate::progress::{self, Progress, Stage};
+use finish::parameterize_once;
+use lambda_fallback::{is_precision_failure, next_lambda};
+use prepare::{prepare, Prepared};
+use std::time::Instant;
+
+/// Parameterize an open disk-like or closed genus-0 `mesh` onto the domain of `options`.
+///
+/// A closed surface whose transport stalls (its initial map squeezes part of the surface
+/// below double precision) or whose map is poor is mapped again with the next of
+/// [`ParamOptions::closed_lambda_fallbacks`] (see [`lambda_fallback`]);
+/// [`ParamReport::lambda_fallbacks`] lists the attempts not kept, `report.flatten` the
+/// `lambda` used, and `report.seconds` then covers every attempt.
+///
+/// The work runs on a worker thread of rayon's pool; `progress` is called on this thread
+/// (see `crate::pool`).
+pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+    crate::pool::on_pool(progress, |progress| parameterize_with_fallbacks(mesh, options, progress))
+}
+
+/// [`parameterize`] on the current thread.
+fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+    options.domain.check().map_err(Error::InvalidOption)?;
+    let start = Instant::now();
+    progress::check(progress, Stage::Validate, 0.0, "checking the mesh")?;
+    let prepared = prepare(mesh, options)?;
+    // Every attempt not returned, the best poor map so far and the last transport failure.
+    let mut attempts = Vec::new();
+    let mut best: Option<(f64, CapMap)> = None;
+    let mut failure: Option<Error> = None;
+    let mut attempt = options.clone();
+    loop {
+        let lambda = attempt.closed.lambda;
+        match parameterize_at_lambda(mesh, &prepared, &attempt, progress) {
+            Ok(map) if !is_poor(&map) => return Ok(with_fallbacks(map, attempts, start)),
+            Ok(map) => {
+                let d = map.report.area_distortion.mean_abs;
+                attempts.push(LambdaFallback { lambda, reason: format!("mean |d_area| {d:.3} is above {POOR_MAP_AREA_DISTORTION}"), mean_abs_area_distortion: Some(d) });
+                if !best.as_ref().is_some_and(|(_, b)| b.report.area_distortion.mean_abs <= d) {
+                    best = Some((lambda, map));
+                }
+            }
+            Err(e) if is_precision_failure(&e) => {
+                attempts.push(LambdaFallback { lambda, reason: e.to_string(), mean_abs_area_distortion: None });
+                failure = Some(e);
+            }
+            Err(e) => return Err(e),
+        }
+        match next_lambda(options, lambda).filter(|_| prepared.kind == SurfaceKind::ClosedSphere) {
+            Some(next) => attempt.closed.lambda = next,
+            None => {
+                return match (best, failure) {
+                    (Some((kept, map)), _) => {
+                        attempts.retain(|a| a.lambda != kept);
+                        Ok(with_fallbacks(map, attempts, start))
+                    }
+                    (None, Some(e)) => Err(e),
+                    // Each attempt keeps a map or a failure; this is for the compiler.
+                    (None, None) => Err(Error::Internal("no parameterization was attempted".into())),
+                };
+            }
+        }
+    }
+}
+
+/// A map poor enough that a closed surface is mapped again with a larger `lambda`: mean
+/// `|d_area|` above [`POOR_MAP_AREA_DISTORTION`] on the adaptive cap.
+fn is_poor(map: &CapMap) -> bool {
+    map.report.domain == Domain::Adaptive && !(map.report.area_distortion.mean_abs <= POOR_MAP_AREA_DISTORTION)
+}
+
+/// `map` with the attempts not kept, its wall time counted from `start` when there were any.
+fn with_fallbacks(mut map: CapMap, fallbacks: Vec<LambdaFallback>, start: Instant) -> CapMap {
+    if !fallbacks.is_empty() {
+        map.report.seconds = start.elapsed().as_secs_f64();
+    }
+    map.report.lambda_fallbacks = fallbacks;
+    map
+}
+
+/// [`parameterize`] at `options.closed.lambda`, without fallbacks.
+fn parameterize_at_lambda(mesh: &TriMesh, prepared: &Prepared, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
+    let at = |other_end: bool| {
+        let mut o = options.clone();
+        o.closed.puncture.other_end = other_end;
+        o
+    };
+    match options.puncture_end {
+        PunctureEnd::Bottom => parameterize_once(mesh, prepared, &at(false), progress),
+        PunctureEnd::Top => parameterize_once(mesh, prepared, &at(true), progress),
+        PunctureEnd::Best => puncture_end::parameterize_best_end(mesh, prepared, &at(false), &at(true), progress),
+    }
+}

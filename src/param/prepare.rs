@@ -1,0 +1,47 @@
+//! The one preparation of a parameterization: the input's hard errors checked, coincident
+//! vertices welded and the surface classified, once for every puncture end and `lambda` tried.
+
+use super::options::ParamOptions;
+use crate::error::Error;
+use crate::mesh::repair::{self, Welded};
+use crate::mesh::topology::Topology;
+use crate::mesh::validate::{checked_topology, classify, classify_checked};
+use crate::mesh::{validate, SurfaceKind, TriMesh};
+use std::time::Instant;
+
+/// A mesh checked, welded and classified.
+pub(crate) struct Prepared {
+    /// When the preparation started (the parameterization's wall time counts from here).
+    pub(super) start: Instant,
+    /// The welded mesh and the map from input vertices to its vertices.
+    pub(super) welded: Welded,
+    /// The welded mesh's kind.
+    pub(super) kind: SurfaceKind,
+    /// The welded mesh's topology.
+    pub(super) topology: Topology,
+    /// Whether the input as given (before welding) is a closed genus-0 surface: only then are
+    /// both puncture ends searched ([`super::PunctureEnd::Best`]).
+    pub(super) input_closed: bool,
+}
+
+/// Check `mesh` (indices, finite coordinates, manifold edges: errors that welding would
+/// hide), weld its vertices closer than `options.weld_tolerance` times the bounding-box
+/// diagonal, and classify the welded mesh (an error unless it is an open disk or a closed
+/// genus-0 surface).
+pub(crate) fn prepare(mesh: &TriMesh, options: &ParamOptions) -> Result<Prepared, Error> {
+    let start = Instant::now();
+    // Hard errors of the input as given (indices out of range, repeated indices in a face,
+    // NaN, duplicate faces, non-manifold edges): welding would drop such faces silently.
+    let input_topology = checked_topology(mesh)?;
+    let input_closed = classify(&input_topology) == Some(SurfaceKind::ClosedSphere);
+    let diag = mesh.bounding_box_diagonal();
+    let welded = repair::weld_coincident(mesh, options.weld_tolerance * diag);
+    let work = &welded.mesh;
+    // Nothing welded or dropped: the input's topology is the welded mesh's.
+    let (kind, topology) = if work.vertices.len() == mesh.vertices.len() && work.faces == mesh.faces {
+        classify_checked(input_topology)?
+    } else {
+        validate(work)?
+    };
+    Ok(Prepared { start, welded, kind, topology, input_closed })
+}

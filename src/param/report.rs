@@ -1,0 +1,137 @@
+//! What [`super::parameterize`] measured: [`ParamReport`] and the records it holds.
+
+use crate::cap::Domain;
+use crate::flatten::closed::ClosedFlattenReport;
+use crate::flatten::puncture::Puncture;
+use crate::flatten::DiskConformalReport;
+use crate::mesh::SurfaceKind;
+use crate::metrics::Stats;
+use crate::refine::{AreaRefineReport, SmoothingTrial, UntangleReport};
+
+/// The initial flattening's report, by surface kind.
+#[derive(Debug, Clone, serde::Serialize)]
+#[serde(untagged)]
+pub enum FlattenReport {
+    /// Disk conformal map of an open surface.
+    Open(DiskConformalReport),
+    /// Puncture, stretch energy and quasi-conformal composition of a closed surface.
+    Closed(ClosedFlattenReport),
+}
+
+/// One evaluation of the radius search.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct RadiusSample {
+    /// Disk radius.
+    pub r: f64,
+    /// Cap bound for that radius.
+    pub z_star: f64,
+    /// Area-normalised mean `|mu|^2`.
+    pub energy: f64,
+    /// Newton iterations of that transport solve (on the coarse level when the search ran
+    /// there).
+    pub newton_iterations: usize,
+}
+
+/// Serialize a report field as its `Display` string (the JSON keeps the words of the
+/// command-line output).
+fn as_display<T: std::fmt::Display, S: serde::Serializer>(value: &T, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.collect_str(value)
+}
+
+/// Everything measured about one parameterization.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ParamReport {
+    /// Domain used (serialized as its display string, e.g. `"adaptive"`, `"radius=1.5"`).
+    #[serde(serialize_with = "as_display")]
+    pub domain: Domain,
+    /// Surface kind (serialized as its display string, `"open disk"` or `"closed genus-0"`).
+    #[serde(serialize_with = "as_display")]
+    pub kind: SurfaceKind,
+    /// Input vertices.
+    pub n_vertices: usize,
+    /// Input faces.
+    pub n_faces: usize,
+    /// Vertices merged with a coincident one before mapping.
+    pub welded_vertices: usize,
+    /// Optimal (or fixed) disk radius; `None` for the planar disk.
+    pub r_star: Option<f64>,
+    /// Cap bound `Z*`; `None` for the planar disk.
+    pub z_star: Option<f64>,
+    /// Per-face area distortion statistics.
+    pub area_distortion: Stats,
+    /// Per-corner angle distortion statistics (radians).
+    pub angle_distortion: Stats,
+    /// Area-normalised mean `|mu|^2` at the final radius.
+    pub conformal_energy: f64,
+    /// Faces with non-positive orientation in the final map.
+    pub flipped_faces: usize,
+    /// Regularisation strength of the final centroid map (0: the paper's plain map).
+    pub smoothing_kappa: f64,
+    /// Every regularisation tried, with its measured area distortion.
+    pub smoothing_trials: Vec<SmoothingTrial>,
+    /// The repair of folded faces after transport (see [`crate::refine::untangle`]).
+    pub untangle: UntangleReport,
+    /// The face-level area refinement (see [`crate::refine::area_refine`]).
+    pub area_refinement: AreaRefineReport,
+    /// Newton iterations over all full-resolution transport solves.
+    pub newton_iterations: usize,
+    /// Sites of the coarse level the radius search ran on; `None` when it ran at full
+    /// resolution.
+    pub search_sites: Option<usize>,
+    /// Newton iterations of the coarse radius search.
+    pub coarse_newton_iterations: usize,
+    /// Transport solves.
+    pub transport_solves: usize,
+    /// Symbolic factorizations of the transport Newton matrices, coarse search included
+    /// (the other iterations reused one).
+    pub transport_symbolic_factorizations: usize,
+    /// Radius search evaluations in order.
+    pub radius_curve: Vec<RadiusSample>,
+    /// Initial flattening report.
+    pub flatten: FlattenReport,
+    /// The punctured quadrilateral of a closed surface (indices in the welded mesh).
+    pub puncture: Option<Puncture>,
+    /// Both ends tried when the puncture end is [`super::PunctureEnd::Best`] (empty otherwise).
+    pub puncture_trials: Vec<PunctureTrial>,
+    /// The composition factors tried for a closed surface and not kept (its transport
+    /// stalled or its map was poor, [`super::ParamOptions::closed_lambda_fallbacks`]); `flatten`
+    /// has the `lambda` kept. Empty when the first worked.
+    pub lambda_fallbacks: Vec<LambdaFallback>,
+    /// Wall-clock seconds of the whole parameterization (for [`super::PunctureEnd::Best`] both
+    /// ends' searches, in parallel, and the kept end's second half; the stage seconds below
+    /// are the kept end's).
+    pub seconds: f64,
+    /// Seconds spent in the initial flattening.
+    pub flatten_seconds: f64,
+    /// Seconds spent in transport solves (radius search included).
+    pub transport_seconds: f64,
+    /// Seconds spent in the regularisation trials and fold repair.
+    pub regularise_seconds: f64,
+    /// Seconds spent in the face-level area refinement.
+    pub refine_seconds: f64,
+}
+
+/// One end tried by [`super::PunctureEnd::Best`].
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct PunctureTrial {
+    /// The principal axis direction called "up" for this trial.
+    pub axis: [f64; 3],
+    /// Mean `|d_area|` of the radius search's map at `r*` (the criterion; `None` for a
+    /// fixed domain).
+    pub search_area_distortion: Option<f64>,
+    /// Mean `|d_area|` of the finished map: the kept end's, and both ends' when both were
+    /// finished (fixed domains).
+    pub mean_abs_area_distortion: Option<f64>,
+}
+
+/// One `lambda` tried for a closed surface whose map was not kept: its transport failed, or
+/// its map was poor and a later one was better.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct LambdaFallback {
+    /// The composition factor tried.
+    pub lambda: f64,
+    /// Why it was not kept (the transport's error, or the map's distortion).
+    pub reason: String,
+    /// The map's mean `|d_area|` when there was a map.
+    pub mean_abs_area_distortion: Option<f64>,
+}
