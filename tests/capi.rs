@@ -329,6 +329,8 @@ fn refinement_equalization_and_puncture_end_options_are_passed_through() {
     o.faces = 1000;
     o.param.area_refinement = 0;
     o.param.puncture_end = CAPMESH_V1_PUNCTURE_TOP;
+    // The equalization's own sweeps count when the shape stage does not run.
+    o.optimize = CAPMESH_V1_OPTIMIZE_AREA;
     o.area_equalization = 0;
     let status = unsafe { capmesh_v1_remesh(&arrays.view(), &o, None, null_mut(), &mut out, &mut report) };
     assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
@@ -343,4 +345,72 @@ fn refinement_equalization_and_puncture_end_options_are_passed_through() {
     let status = unsafe { capmesh_v1_parameterize(&arrays.view(), &p, None, null_mut(), &mut out, null_mut()) };
     assert_eq!(status, CAPMESH_V1_INVALID_ARGUMENT);
     assert!(last_error().contains("puncture_end = 5"), "{}", last_error());
+}
+
+/// Share of the faces of `mesh` with an angle below 30 degrees.
+fn share_below_30(mesh: &TriMesh) -> f64 {
+    capmesh::remesh::shape::AngleStats::of(&mesh.vertices, &mesh.faces).share_below_30
+}
+
+/// The shape stage's options reach the library: the default remesh is the shape+area one
+/// (well-shaped triangles), `CAPMESH_V1_OPTIMIZE_AREA` keeps the cap grid's connectivity (many
+/// thin triangles where the map stretches), and out-of-range values are refused by name.
+#[test]
+fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
+    let input = read("open_lv_endo_rabbit_chaste.obj.gz");
+    let arrays = Arrays::of(&input);
+    let mut o = capmesh_v1_remesh_options_default();
+    assert_eq!(o.optimize, CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA);
+    let shape = capmesh::remesh::shape::ShapeOptions::default();
+    assert_eq!(
+        (o.relax_iterations as usize, o.polish_iterations as usize, o.shape_weight, o.resample != 0),
+        (shape.relax_iterations, shape.polish_iterations, shape.shape_weight, shape.resample)
+    );
+    o.faces = 2000;
+    let run = |o: &capmesh_v1_remesh_options| {
+        let (mut out, mut report) = (null_mut(), null_mut());
+        let status = unsafe { capmesh_v1_remesh(&arrays.view(), o, None, null_mut(), &mut out, &mut report) };
+        assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+        let mesh = take_mesh(out);
+        let report: serde_json::Value = serde_json::from_str(&take_string(report)).unwrap();
+        (mesh, report)
+    };
+
+    let (shaped, report) = run(&o);
+    assert_eq!(report["optimize"], "shape+area", "{}", report["optimize"]);
+    assert_eq!(report["shape"]["iterations"].as_u64(), Some(40), "{}", report["shape"]);
+    let shaped_share = share_below_30(&shaped);
+
+    o.optimize = CAPMESH_V1_OPTIMIZE_AREA;
+    let (area, report) = run(&o);
+    assert_eq!(report["optimize"], "area");
+    assert_eq!(report["shape"]["iterations"].as_u64(), Some(0));
+    let area_share = share_below_30(&area);
+    println!("rabbit LV: faces with an angle below 30 degrees: {shaped_share:.3} shape+area, {area_share:.3} area");
+    assert!(shaped_share < 0.1 && area_share > 3.0 * shaped_share, "{shaped_share} vs {area_share}");
+
+    // The iteration counts are passed through: no iterations, no shape stage work.
+    o.optimize = CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA;
+    o.relax_iterations = 0;
+    o.polish_iterations = 0;
+    let (_, report) = run(&o);
+    assert_eq!(report["shape"]["iterations"].as_u64(), Some(0), "{}", report["shape"]);
+
+    let mut out = null_mut();
+    let mut refused = |o: &capmesh_v1_remesh_options, words: &str| {
+        let status = unsafe { capmesh_v1_remesh(&arrays.view(), o, None, null_mut(), &mut out, null_mut()) };
+        expect(status, CAPMESH_V1_INVALID_ARGUMENT, words);
+        assert!(out.is_null());
+    };
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.optimize = 3;
+    refused(&bad, "optimize = 3");
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.shape_weight = -0.5;
+    refused(&bad, "shape_weight = -0.5");
+    bad.shape_weight = f64::INFINITY;
+    refused(&bad, "shape_weight");
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.resample = 2;
+    refused(&bad, "resample = 2");
 }

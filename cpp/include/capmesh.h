@@ -68,6 +68,25 @@
 #define CAPMESH_V1_GRID_LAT_LONG 1
 
 /**
+ * `capmesh_v1_remesh_options.optimize`: the shape stage (edge flips, tangential relaxation
+ * and a joint area and shape polish on the surface), then the area equalization: isotropic
+ * triangles of near-equal area (default). The lat-long grid keeps its grid lines and gets the
+ * area equalization only.
+ */
+#define CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA 0
+
+/**
+ * `capmesh_v1_remesh_options.optimize`: the area equalization alone (the cap grid's
+ * connectivity, near-equal areas; `area_equalization` sweeps).
+ */
+#define CAPMESH_V1_OPTIMIZE_AREA 1
+
+/**
+ * `capmesh_v1_remesh_options.optimize`: the paper's plain pull-back of the cap grid.
+ */
+#define CAPMESH_V1_OPTIMIZE_NONE 2
+
+/**
  * Progress stage: checking the input mesh.
  */
 #define CAPMESH_V1_STAGE_VALIDATE 0
@@ -245,10 +264,35 @@ typedef struct capmesh_v1_remesh_options {
    */
   struct capmesh_v1_param_options param;
   /**
-   * Sweeps of the area equalization of the pulled-back mesh; 0 = the plain pull-back.
-   * Default 30.
+   * Sweeps of the area equalization of the pulled-back mesh when the shape stage does not
+   * run (`CAPMESH_V1_OPTIMIZE_AREA`, or the lat-long grid); after the shape stage it makes
+   * its own 10 sweeps. 0 = the plain pull-back. Default 30.
    */
   uint32_t area_equalization;
+  /**
+   * One of `CAPMESH_V1_OPTIMIZE_*`: what is optimised after the pull-back. Default shape and
+   * area (0).
+   */
+  int32_t optimize;
+  /**
+   * Relaxation iterations of the shape stage (edge flips and tangential relaxation on the
+   * surface). Default 20.
+   */
+  uint32_t relax_iterations;
+  /**
+   * Polish iterations of the shape stage (joint area and shape steps). Default 20.
+   */
+  uint32_t polish_iterations;
+  /**
+   * Weight of the shape term against the area term in the polish, finite and >= 0 (larger:
+   * better angles, less equal areas). Default 0.3.
+   */
+  double shape_weight;
+  /**
+   * 1 = also split long and collapse short edges in the shape stage (better angles on smooth
+   * surfaces, slivers where thin parts fold at the remesh's scale); 0 = off (default).
+   */
+  int32_t resample;
 } capmesh_v1_remesh_options;
 
 /**

@@ -79,6 +79,16 @@ enum class Stage : int32_t {
   Harmonics = CAPMESH_V1_STAGE_HARMONICS,
 };
 
+/// What the remesh optimises after the pull-back (capmesh_v1_remesh_options.optimize).
+enum class Optimize : int32_t {
+  /// Shape stage then area equalization: well-shaped triangles of near-equal area (default).
+  ShapeAndArea = CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA,
+  /// Area equalization alone: the cap grid's connectivity, near-equal areas.
+  Area = CAPMESH_V1_OPTIMIZE_AREA,
+  /// The paper's plain pull-back (CAPMESH_V1_OPTIMIZE_NONE; not `None`, a macro of X11).
+  Plain = CAPMESH_V1_OPTIMIZE_NONE,
+};
+
 /// Progress sink: completed fraction of `stage` in [0, 1] and a short message. Return false to
 /// cancel (the call then throws Error with Status::Cancelled). Called on the calling thread.
 using Progress = std::function<bool(Stage stage, double fraction, const char *message)>;
@@ -134,9 +144,32 @@ struct ParamOptions : capmesh_v1_param_options {
   ParamOptions() : capmesh_v1_param_options(capmesh_v1_param_options_default()) {}
 };
 
-/// Remeshing options with capmesh's defaults (uniform grid of about 5000 faces).
+/// Remeshing options with capmesh's defaults (uniform grid of about 5000 faces, shape+area
+/// optimisation with 20 relaxation and 20 polish iterations, shape weight 0.3, no resampling).
+/// The fields of capmesh_v1_remesh_options can be set directly; the with_* setters chain.
 struct RemeshOptions : capmesh_v1_remesh_options {
   RemeshOptions() : capmesh_v1_remesh_options(capmesh_v1_remesh_options_default()) {}
+  /// What is optimised after the pull-back.
+  RemeshOptions &with_optimize(Optimize o) {
+    optimize = static_cast<int32_t>(o);
+    return *this;
+  }
+  /// Relaxation and polish iterations of the shape stage.
+  RemeshOptions &with_shape_iterations(uint32_t relax, uint32_t polish) {
+    relax_iterations = relax;
+    polish_iterations = polish;
+    return *this;
+  }
+  /// Weight of the shape term against the area term in the polish (>= 0).
+  RemeshOptions &with_shape_weight(double weight) {
+    shape_weight = weight;
+    return *this;
+  }
+  /// Split long and collapse short edges in the shape stage.
+  RemeshOptions &with_resample(bool on) {
+    resample = on ? 1 : 0;
+    return *this;
+  }
   /// Uniform grid of about `faces` faces.
   static RemeshOptions uniform(uint32_t faces) {
     RemeshOptions o;

@@ -104,6 +104,9 @@ int main(int argc, char **argv) {
   printf("remeshed: %zu faces, %zu vertices\n", nf, capmesh_v1_mesh_vertex_count(out));
   CHECK(nf >= 900 && nf <= 1100);
   CHECK(report != NULL && strstr(report, "\"d_face_relative\"") != NULL);
+  /* The default optimisation is shape+area. */
+  CHECK(opt.optimize == CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA);
+  CHECK(strstr(report, "\"optimize\":\"shape+area\"") != NULL);
   CHECK(capmesh_v1_mesh_positions(out) != NULL && capmesh_v1_mesh_triangles(out) != NULL);
   capmesh_v1_mesh_free(out);
   capmesh_v1_string_free(report);

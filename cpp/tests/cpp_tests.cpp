@@ -200,6 +200,33 @@ void callback_exception() {
   }
 }
 
+/// The remesh options of the shape stage reach capmesh: the default is shape+area, Area skips
+/// the shape stage, the iteration counts are used, an unknown optimisation is refused.
+void optimize_options() {
+  DMesh input = read<DMesh>(helmet);
+  capmesh::RemeshOptions o = capmesh::RemeshOptions::uniform(1000);
+  CHECK(o.optimize == CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA);
+  CHECK(o.relax_iterations == 20 && o.polish_iterations == 20 && o.shape_weight == 0.3 && o.resample == 0);
+  auto shaped = capmesh::openmesh::remesh(input, o);
+  CHECK(shaped.report_json.find("\"optimize\":\"shape+area\"") != std::string::npos);
+  auto area = capmesh::openmesh::remesh(input, capmesh::RemeshOptions::uniform(1000).with_optimize(capmesh::Optimize::Area));
+  CHECK(area.report_json.find("\"optimize\":\"area\"") != std::string::npos);
+  auto few = capmesh::openmesh::remesh(input, capmesh::RemeshOptions::uniform(1000).with_shape_iterations(2, 3));
+  const auto shape_at = few.report_json.find("\"shape\":{");
+  CHECK(shape_at != std::string::npos);
+  if (shape_at != std::string::npos) CHECK(json_number(few.report_json.substr(shape_at), "iterations") == 5.0);
+  std::printf("shape+area %zu faces, area %zu faces\n", shaped.mesh.n_faces(), area.mesh.n_faces());
+  capmesh::RemeshOptions bad = capmesh::RemeshOptions::uniform(1000);
+  bad.optimize = 7;
+  try {
+    capmesh::openmesh::remesh(input, bad);
+    CHECK(false);
+  } catch (const capmesh::Error &e) {
+    CHECK(e.status() == capmesh::Status::InvalidArgument);
+    CHECK(e.message().find("optimize = 7") != std::string::npos);
+  }
+}
+
 void misuse_raw() {
   DMesh input = read<DMesh>(helmet);
   capmesh::Arrays a = capmesh::openmesh::to_arrays(input);
@@ -318,6 +345,7 @@ int main(int argc, char **argv) {
       {"metrics", metrics},
       {"cancel_by_callback", cancel_by_callback},
       {"callback_exception", callback_exception},
+      {"optimize_options", optimize_options},
       {"misuse_raw", misuse_raw},
       {"misuse_wrapper", misuse_wrapper},
       {"openmesh_adapter", openmesh_adapter},

@@ -6,7 +6,8 @@ use crate::cap::Domain;
 use crate::param::ParamOptions;
 use crate::refine::Smoothing;
 use crate::flatten::closed::DEFAULT_LAMBDA;
-use crate::remesh::{CapGrid, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
+use crate::remesh::shape::ShapeOptions;
+use crate::remesh::{CapGrid, Optimize, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
 
 /// `capmesh_v1_param_options.domain`: the adaptive cap of the paper (default).
 pub const CAPMESH_V1_DOMAIN_ADAPTIVE: i32 = 0;
@@ -31,6 +32,17 @@ pub const CAPMESH_V1_PUNCTURE_TOP: i32 = 2;
 pub const CAPMESH_V1_GRID_UNIFORM: i32 = 0;
 /// `capmesh_v1_remesh_options.grid`: `rings` latitude rings times `sectors` meridians.
 pub const CAPMESH_V1_GRID_LAT_LONG: i32 = 1;
+
+/// `capmesh_v1_remesh_options.optimize`: the shape stage (edge flips, tangential relaxation
+/// and a joint area and shape polish on the surface), then the area equalization: isotropic
+/// triangles of near-equal area (default). The lat-long grid keeps its grid lines and gets the
+/// area equalization only.
+pub const CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA: i32 = 0;
+/// `capmesh_v1_remesh_options.optimize`: the area equalization alone (the cap grid's
+/// connectivity, near-equal areas; `area_equalization` sweeps).
+pub const CAPMESH_V1_OPTIMIZE_AREA: i32 = 1;
+/// `capmesh_v1_remesh_options.optimize`: the paper's plain pull-back of the cap grid.
+pub const CAPMESH_V1_OPTIMIZE_NONE: i32 = 2;
 
 /// Parameterization options. Start from `capmesh_v1_param_options_default()`.
 #[allow(non_camel_case_types)]
@@ -69,9 +81,24 @@ pub struct capmesh_v1_remesh_options {
     pub sectors: u32,
     /// Parameterization options.
     pub param: capmesh_v1_param_options,
-    /// Sweeps of the area equalization of the pulled-back mesh; 0 = the plain pull-back.
-    /// Default 30.
+    /// Sweeps of the area equalization of the pulled-back mesh when the shape stage does not
+    /// run (`CAPMESH_V1_OPTIMIZE_AREA`, or the lat-long grid); after the shape stage it makes
+    /// its own 10 sweeps. 0 = the plain pull-back. Default 30.
     pub area_equalization: u32,
+    /// One of `CAPMESH_V1_OPTIMIZE_*`: what is optimised after the pull-back. Default shape and
+    /// area (0).
+    pub optimize: i32,
+    /// Relaxation iterations of the shape stage (edge flips and tangential relaxation on the
+    /// surface). Default 20.
+    pub relax_iterations: u32,
+    /// Polish iterations of the shape stage (joint area and shape steps). Default 20.
+    pub polish_iterations: u32,
+    /// Weight of the shape term against the area term in the polish, finite and >= 0 (larger:
+    /// better angles, less equal areas). Default 0.3.
+    pub shape_weight: f64,
+    /// 1 = also split long and collapse short edges in the shape stage (better angles on smooth
+    /// surfaces, slivers where thin parts fold at the remesh's scale); 0 = off (default).
+    pub resample: i32,
 }
 
 /// The defaults documented on each field.
@@ -90,6 +117,7 @@ pub extern "C" fn capmesh_v1_param_options_default() -> capmesh_v1_param_options
 /// The defaults documented on each field.
 #[no_mangle]
 pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_options {
+    let shape = ShapeOptions::default();
     capmesh_v1_remesh_options {
         grid: CAPMESH_V1_GRID_UNIFORM,
         faces: 5000,
@@ -97,6 +125,11 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
         sectors: 64,
         param: capmesh_v1_param_options_default(),
         area_equalization: DEFAULT_AREA_EQUALIZATION as u32,
+        optimize: CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA,
+        relax_iterations: shape.relax_iterations as u32,
+        polish_iterations: shape.polish_iterations as u32,
+        shape_weight: shape.shape_weight,
+        resample: i32::from(shape.resample),
     }
 }
 
@@ -168,5 +201,31 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         }
         g => return Err(Failure::invalid_argument(format!("grid = {g} is not 0 (uniform) or 1 (lat-long)"))),
     };
-    Ok(RemeshOptions { grid, param: param_options(&o.param)?, area_equalization: o.area_equalization as usize, ..Default::default() })
+    let optimize = match o.optimize {
+        CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA => Optimize::ShapeAndArea,
+        CAPMESH_V1_OPTIMIZE_AREA => Optimize::Area,
+        CAPMESH_V1_OPTIMIZE_NONE => Optimize::None,
+        v => return Err(Failure::invalid_argument(format!("optimize = {v} is not 0 (shape+area), 1 (area) or 2 (none)"))),
+    };
+    let shape_weight = finite("shape_weight", o.shape_weight)?;
+    if shape_weight < 0.0 {
+        return Err(Failure::invalid_argument(format!("shape_weight = {shape_weight} is negative")));
+    }
+    let resample = match o.resample {
+        0 => false,
+        1 => true,
+        r => return Err(Failure::invalid_argument(format!("resample = {r} is not 0 (off) or 1 (on)"))),
+    };
+    let shape = ShapeOptions::default()
+        .with_relax_iterations(o.relax_iterations as usize)
+        .with_polish_iterations(o.polish_iterations as usize)
+        .with_shape_weight(shape_weight)
+        .with_resample(resample);
+    Ok(RemeshOptions {
+        grid,
+        param: param_options(&o.param)?,
+        area_equalization: o.area_equalization as usize,
+        optimize,
+        shape,
+    })
 }
