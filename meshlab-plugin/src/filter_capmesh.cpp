@@ -149,8 +149,9 @@ QString FilterCapmeshPlugin::filterInfo(ActionIDType f) const
 		       "disk coordinates can be stored as per-vertex texture coordinates. capmesh " + version;
 	case FP_REMESH:
 		return "Remeshes a genus-0 surface through its cap parameterization: a uniform or "
-		       "latitude-longitude grid on the cap is pulled back onto the surface. The result is "
-		       "a new layer. capmesh " + version;
+		       "latitude-longitude grid on the cap is pulled back onto the surface, then optimised "
+		       "(by default shape+area: well-shaped triangles of near-equal area, every vertex "
+		       "on the input surface). The result is a new layer. capmesh " + version;
 	case FP_HARMONICS:
 		return "Fits the adaptive harmonic basis of the cap to the surface coordinates up to order "
 		       "N and adds the reconstructed surface as a new layer. capmesh " + version;

@@ -13,12 +13,22 @@ namespace {
 const QStringList domainNames = {
 	"Adaptive cap (radius search)", "Unit disk", "Hemisphere", "Sphere", "Cap of fixed radius"};
 const QStringList gridNames = {"Uniform", "Latitude-longitude"};
+// In the order of CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA, _AREA, _NONE (0, 1, 2).
+const QStringList optimizeNames = {"shape+area", "area", "none"};
 
 uint32_t positive(const RichParameterList& list, const char* name)
 {
 	const int v = list.getInt(name);
 	if (v <= 0)
 		throw MLException(QString("Capmesh: parameter %1 must be a positive integer, got %2.").arg(name).arg(v));
+	return uint32_t(v);
+}
+
+uint32_t nonNegative(const RichParameterList& list, const char* name)
+{
+	const int v = list.getInt(name);
+	if (v < 0)
+		throw MLException(QString("Capmesh: parameter %1 must be a non-negative integer, got %2.").arg(name).arg(v));
 	return uint32_t(v);
 }
 
@@ -74,6 +84,28 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 		"Approximate face count of the uniform grid."));
 	list.addParam(RichInt("Rings", clampToInt(d.rings), "Rings (lat-long grid)", "Number of latitude rings."));
 	list.addParam(RichInt("Sectors", clampToInt(d.sectors), "Sectors (lat-long grid)", "Number of longitude sectors."));
+	list.addParam(RichEnum(
+		"Optimize", d.optimize, optimizeNames, "Optimize",
+		"What is optimised after the cap grid is pulled back onto the surface. shape+area "
+		"(default): edge flips, tangential relaxation and a joint area and shape polish on the "
+		"surface, then the area equalization: well-shaped triangles of near-equal area. area: "
+		"the area equalization alone, keeping the cap grid's connectivity (thin triangles where "
+		"the map stretches). none: the paper's plain pull-back. The latitude-longitude grid keeps "
+		"its grid lines and gets the area equalization only."));
+	list.addParam(RichInt(
+		"RelaxIterations", clampToInt(d.relax_iterations), "Relaxation iterations (shape+area)",
+		"Iterations of edge flips and tangential relaxation on the surface in the shape stage."));
+	list.addParam(RichInt(
+		"PolishIterations", clampToInt(d.polish_iterations), "Polish iterations (shape+area)",
+		"Iterations of the joint area and shape polish in the shape stage."));
+	list.addParam(RichFloat(
+		"ShapeWeight", Scalarm(d.shape_weight), "Shape weight (shape+area)",
+		"Weight of the shape term against the area term in the polish, >= 0: larger gives better "
+		"angles and less equal areas."));
+	list.addParam(RichBool(
+		"Resample", d.resample != 0, "Split and collapse edges (shape+area)",
+		"Also split long and collapse short edges in the shape stage: better angles on smooth "
+		"surfaces, slivers where thin parts fold at the remesh's scale."));
 	addParamOptions(list, d.param);
 }
 
@@ -86,6 +118,13 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 	o.faces = positive(list, "Faces");
 	o.rings = positive(list, "Rings");
 	o.sectors = positive(list, "Sectors");
+	o.optimize = int32_t(list.getEnum("Optimize"));
+	if (o.optimize < 0 || o.optimize >= optimizeNames.size())
+		throw MLException(QString("Capmesh: unknown optimization %1.").arg(o.optimize));
+	o.relax_iterations = nonNegative(list, "RelaxIterations");
+	o.polish_iterations = nonNegative(list, "PolishIterations");
+	o.shape_weight = double(list.getFloat("ShapeWeight"));
+	o.resample = list.getBool("Resample") ? 1 : 0;
 	o.param = readParamOptions(list);
 	return o;
 }
