@@ -12,6 +12,7 @@ use crate::param::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
 use crate::cap::stereographic;
 use crate::mesh::topology::is_boundary_vertex;
+use crate::mesh::geometry::triangle_area;
 use crate::mesh::{SurfaceKind, TriMesh};
 use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
@@ -229,11 +230,29 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     let shaped = options.optimize == Optimize::ShapeAndArea && matches!(options.grid, CapGrid::Uniform { .. });
     let t_shape = Instant::now();
     let mut shape_report = shape::ShapeReport::default();
+    let mut has_plane: Vec<bool> = (0..n).map(|v| v < in_plane).collect();
+    // The punctured quad's area against a remesh face's: the bottom is merged only when the
+    // quad is no larger than one face (on a coarse input the quad is a sizeable part of the
+    // surface, and the ring above the rim could not reach across it).
+    let quad_area: f64 = map.bottom_faces.iter().filter_map(|&f| mesh.faces.get(f)).map(|f| triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize])).sum();
+    let surface_area: f64 = mesh.faces.iter().map(|f| triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize])).sum();
+    if shaped && closed && quad_area * faces.len() as f64 <= surface_area {
+        // The rim ring and the bottom disk become one vertex on the punctured quad (the disk's
+        // centre), fanned to the ring above ([`shape::bottom`]).
+        let centre = positions.get(in_plane).or(positions.get(first_fixed)).copied();
+        if let Some((f, p, x)) = centre.and_then(|c| shape::bottom::merge_bottom(&faces, &planar, &positions, first_fixed, c)) {
+            faces = f;
+            planar = p;
+            positions = x;
+            has_plane = (0..positions.len()).map(|v| v < first_fixed).collect();
+            fixed = (0..positions.len()).map(|v| v >= first_fixed).collect();
+        }
+    }
     if shaped {
         progress::check(progress, Stage::Remesh, 0.3, "shaping the triangles")?;
         let lift = shape::state::SurfaceLift::new(mesh, &map.plane, &top_faces);
         let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &is_boundary_vertex(mesh)) };
-        let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), in_plane, fixed: &fixed };
+        let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed };
         let (new_faces, stays, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
         faces = new_faces;
         fixed = stays;
@@ -252,7 +271,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     let target: Vec<f64> = if shaped {
         vec![1.0; faces.len()]
     } else {
-        faces.iter().map(|f| crate::mesh::geometry::triangle_area(grid_mesh.vertices[f[0] as usize], grid_mesh.vertices[f[1] as usize], grid_mesh.vertices[f[2] as usize])).collect()
+        faces.iter().map(|f| triangle_area(grid_mesh.vertices[f[0] as usize], grid_mesh.vertices[f[1] as usize], grid_mesh.vertices[f[2] as usize])).collect()
     };
     let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &faces, &target, &fixed, &mut planar, &mut positions, sweeps);
     let equalize_seconds = t_eq.elapsed().as_secs_f64();

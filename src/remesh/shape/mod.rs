@@ -14,6 +14,7 @@
 //! and the planar mesh stays an embedding. The area equalization ([`super::equalize`]) runs
 //! after it.
 
+pub(crate) mod bottom;
 pub(crate) mod boundary;
 pub(crate) mod flips;
 pub(crate) mod polish;
@@ -164,8 +165,8 @@ pub(crate) struct ShapeInput<'a> {
     pub lift: &'a SurfaceLift<'a>,
     /// The boundary track of an open surface (`None` for a closed one: its rim stays).
     pub track: Option<&'a boundary::Track>,
-    /// Vertices from this index on have no planar point (a closed surface's bottom).
-    pub in_plane: usize,
+    /// Whether each vertex has a planar point (not so a closed surface's bottom).
+    pub has_plane: &'a [bool],
     /// Whether each vertex stays (rim and bottom of a closed surface).
     pub fixed: &'a [bool],
 }
@@ -187,9 +188,9 @@ pub(crate) fn optimize_shape(
     let (next, _) = boundary::boundary_cycle(&faces, n);
     let role: Vec<Role> = (0..n)
         .map(|v| {
-            if input.fixed[v] && input.track.is_some() && next[v] != u32::MAX && v < input.in_plane {
+            if input.fixed[v] && input.track.is_some() && next[v] != u32::MAX && input.has_plane[v] {
                 Role::Boundary
-            } else if input.fixed[v] || v >= input.in_plane || next[v] != u32::MAX {
+            } else if input.fixed[v] || !input.has_plane[v] || next[v] != u32::MAX {
                 Role::Fixed
             } else {
                 Role::Free
@@ -199,12 +200,12 @@ pub(crate) fn optimize_shape(
     let orientation = {
         let s: f64 = faces
             .iter()
-            .filter(|f| f.iter().all(|&v| (v as usize) < input.in_plane) && f.iter().any(|&v| role[v as usize] != Role::Fixed))
+            .filter(|f| f.iter().all(|&v| input.has_plane[v as usize]) && f.iter().any(|&v| role[v as usize] != Role::Fixed))
             .map(|f| crate::mesh::geometry::signed_area_2d(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize]).signum())
             .sum();
         if s < 0.0 { -1.0 } else { 1.0 }
     };
-    let has_plane = (0..n).map(|v| v < input.in_plane).collect();
+    let has_plane = input.has_plane.to_vec();
     let mut mesh = Shaping { faces, plane: std::mem::take(plane), position: std::mem::take(position), hint: vec![u32::MAX; n], role, has_plane, orientation };
     let mut arc = vec![0.0f64; n];
     if let Some(track) = input.track {

@@ -85,7 +85,9 @@ pub(crate) fn ring_jacobian(mesh: &Shaping, ring: &[u32], v: usize) -> Option<[[
     let (mut m, mut nmat) = ([[0.0f64; 2]; 2], [[0.0f64; 2]; 3]);
     for &t in ring {
         for &u in &mesh.faces[t as usize] {
-            if u as usize == v {
+            // Not v itself, nor a vertex without a planar point (a closed surface's merged
+            // bottom).
+            if u as usize == v || !mesh.planar(u) {
                 continue;
             }
             let e2 = [mesh.plane[u as usize][0] - q0[0], mesh.plane[u as usize][1] - q0[1]];
@@ -117,7 +119,9 @@ pub(crate) fn ring_valid_in_plane(mesh: &Shaping, ring: &[u32], v: usize, q: [f6
     ring.iter().all(|&t| {
         let f = mesh.faces[t as usize];
         if !f.iter().all(|&u| mesh.planar(u)) {
-            return false;
+            // A face at a closed surface's merged bottom ([`super::bottom`]): checked on the
+            // surface only ([`ring_faces_same_side`]).
+            return true;
         }
         let p = f.map(|u| if u as usize == v { q } else { mesh.plane[u as usize] });
         let now = f.map(|u| mesh.plane[u as usize]);
