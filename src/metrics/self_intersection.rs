@@ -471,4 +471,20 @@ mod tests {
         }
         assert!(hits > 100);
     }
+
+    /// The same faces on one and on four threads (the grid's cells are split between them).
+    #[test]
+    fn independent_of_the_thread_count() {
+        let mut rand = random(3);
+        let mut mesh = icosphere(4);
+        for p in &mut mesh.vertices {
+            for x in p.iter_mut() {
+                *x += 0.2 * (rand() - 0.5);
+            }
+        }
+        let run = |threads: usize| rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| self_intersecting_faces(&mesh));
+        let one = run(1);
+        assert!(!one.is_empty());
+        assert_eq!(one, run(4));
+    }
 }
