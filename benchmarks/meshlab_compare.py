@@ -218,6 +218,9 @@ def run_library(method, obj, param, out, is_open):
 def _quiet():
     """Worker initializer: the libraries' own progress output (Instant Meshes prints every
     step) goes to /dev/null; errors come back as exceptions."""
+    import warnings
+
+    warnings.simplefilter("ignore")  # pyacvd's deprecation warnings of pyvista's API
     devnull = os.open(os.devnull, os.O_WRONLY)
     os.dup2(devnull, 1)
 

@@ -69,8 +69,6 @@ pub fn count_self_intersecting_faces(mesh: &TriMesh) -> usize {
 pub fn faces_intersect(mesh: &TriMesh, f: usize, g: usize) -> bool {
     let (f, g) = (f.min(g), f.max(g));
     let (a, b) = (mesh.faces[f], mesh.faces[g]);
-    let p = a.map(|v| mesh.vertices[v as usize]);
-    let q = b.map(|v| mesh.vertices[v as usize]);
     let mut shared = 0;
     let mut at = (0, 0);
     for i in 0..3 {
@@ -81,9 +79,15 @@ pub fn faces_intersect(mesh: &TriMesh, f: usize, g: usize) -> bool {
             }
         }
     }
+    if shared >= 2 {
+        // Edge neighbours never intersect; a duplicated face always does.
+        return shared >= 3;
+    }
+    let p = a.map(|v| mesh.vertices[v as usize]);
+    let q = b.map(|v| mesh.vertices[v as usize]);
     match shared {
         0 => triangles_intersect(p, q),
-        1 => {
+        _ => {
             let (i0, i1) = at;
             let s = p[i0];
             let mid = |x: [f64; 3]| [0.5 * (x[0] + s[0]), 0.5 * (x[1] + s[1]), 0.5 * (x[2] + s[2])];
@@ -95,8 +99,6 @@ pub fn faces_intersect(mesh: &TriMesh, f: usize, g: usize) -> bool {
             }
             false
         }
-        2 => false,
-        _ => true,
     }
 }
 
