@@ -3,8 +3,9 @@
 //! surface. Where the mean sampled distance says how closely a remesh follows the surface on
 //! the whole, this says how far its worst chord strays (across a thin part, a fold, a crease).
 //!
-//! Being a maximum over samples, it is a lower bound of the exact one-sided Hausdorff distance
-//! of the continuous surfaces, within about a quarter of a face's size of it.
+//! Being a maximum over four samples per face (edges and corners are not sampled), it is a
+//! lower bound of the exact one-sided Hausdorff distance of the continuous surfaces; the two
+//! meet as the faces get small against the surface's features.
 
 use super::closest::SurfaceDistance;
 use super::sampling::{distances, face_samples};
