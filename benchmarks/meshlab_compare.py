@@ -301,6 +301,8 @@ def tune(run_once, p0, kind, target):
         tried.append((p, faces))
         if abs(faces / target - 1.0) <= TOLERANCE:
             return p, faces, tried, True
+        if len(tried) >= 3 and all(abs(t[1] / faces - 1.0) < 0.01 for t in tried[-3:]):
+            break  # the count no longer responds to the parameter
         point = (math.log(p), math.log(max(faces, 1)))
         if faces < target:
             below = point
@@ -314,13 +316,32 @@ def tune(run_once, p0, kind, target):
             lp = lp if lo < lp < hi else 0.5 * (lo + hi)
             p = math.exp(lp)
         else:
+            # One side of the target only: a secant through the last two tries when they
+            # give a usable slope (a method whose count responds slowly, e.g. MeshLab's
+            # isotropic remeshing coarsening the 48k brain), else the size parameter's own
+            # law (faces ~ p or ~ p^-2); steps of at most a factor of 4.
             exponent = 1.0 if kind == "count" else -2.0
-            ratio = target / max(faces, 1)
-            p = p * ratio ** (1.0 / exponent)
+            if len(tried) >= 2 and tried[-2][0] != p and tried[-2][1] != faces and tried[-2][1] > 0 and faces > 0:
+                secant = (math.log(faces) - math.log(tried[-2][1])) / (math.log(p) - math.log(tried[-2][0]))
+                if secant * exponent > 0 and abs(secant) > 0.05:
+                    exponent = secant
+            step = (target / max(faces, 1)) ** (1.0 / exponent)
+            p = p * min(4.0, max(0.25, step))
         if kind == "count" and p >= 1.0:
             p = float(round(p))
-    best = min(tried, key=lambda t: abs(t[1] / target - 1.0))
-    return best[0], best[1], tried, False
+    return (*closest_try(tried, p0, target), tried, False)
+
+
+def closest_try(tried, p0, target):
+    """The try whose face count is nearest the target; among those within 1% of it, the one
+    whose parameter is nearest the first guess (a method whose count saturates, like MeshLab's
+    isotropic remeshing on the 48k brain at about 5700 faces, is not pushed to an absurd edge
+    length for the last few faces)."""
+    err = lambda t: abs(t[1] / target - 1.0)
+    best = min(err(t) for t in tried)
+    near = [t for t in tried if err(t) <= best + 0.01]
+    p, faces = min(near, key=lambda t: abs(math.log(t[0] / p0)))
+    return p, faces
 
 
 def binary_hash():
