@@ -319,3 +319,50 @@ fn results_do_not_depend_on_the_number_of_threads() {
     assert!(!refused.status.success());
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--threads"), "{}", String::from_utf8_lossy(&refused.stderr));
 }
+
+/// `capmesh metrics --json` has the shape figures (issue 26) beside the earlier keys, the
+/// same report on one and three threads, and a mesh measured against itself has the input's
+/// own self-intersection count and no Hausdorff distance.
+#[test]
+fn metrics_report_shape_and_self_intersections() {
+    let dir = temp_dir("metrics");
+    let input = data("closed_bunny_npm.obj.gz");
+    let remeshed = dir.join("bunny.ply");
+    let run = capmesh().args(["remesh", "--quiet"]).arg(&input).arg("-o").arg(&remeshed).args(["--faces", "2000"]).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let report = |threads: &str, a: &Path, b: &Path| {
+        let run = capmesh().args(["--threads", threads, "metrics", "--json"]).arg(a).arg(b).output().unwrap();
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        run.stdout
+    };
+    let one = report("1", &input, &remeshed);
+    assert_eq!(one, report("3", &input, &remeshed), "the metrics depend on the number of threads");
+    let json: serde_json::Value = serde_json::from_slice(&one).unwrap();
+    for key in [
+        "faces",
+        "d_face_relative",
+        "d_surface_sampled_relative",
+        "min_angle_deg",
+        "zero_area_faces",
+        "mean_min_angle_deg",
+        "share_faces_angle_below_30",
+        "max_angle_deg",
+        "share_interior_valence_6",
+        "self_intersecting_faces",
+        "self_intersecting_faces_input",
+        "hausdorff_distance",
+        "hausdorff_distance_relative",
+    ] {
+        assert!(json.get(key).is_some_and(|v| v.is_number()), "metrics lack numeric {key}");
+    }
+    let f = |k: &str| json[k].as_f64().unwrap();
+    assert!(f("min_angle_deg") <= f("mean_min_angle_deg") && f("mean_min_angle_deg") <= 60.0);
+    assert!(f("max_angle_deg") >= 60.0 && f("max_angle_deg") <= 180.0);
+    assert!((0.0..=1.0).contains(&f("share_faces_angle_below_30")) && (0.0..=1.0).contains(&f("share_interior_valence_6")));
+    assert!(f("hausdorff_distance") >= f("d_surface_vertex") && f("hausdorff_distance_relative") < 0.1);
+    assert_eq!(json["self_intersecting_faces_input"].as_u64(), Some(0), "the bunny does not intersect itself");
+    let same: serde_json::Value = serde_json::from_slice(&report("2", &remeshed, &remeshed)).unwrap();
+    assert_eq!(same["self_intersecting_faces"], json["self_intersecting_faces"]);
+    assert_eq!(same["self_intersecting_faces_input"], json["self_intersecting_faces"]);
+    assert!(same["hausdorff_distance"].as_f64().unwrap() < 1e-12);
+}

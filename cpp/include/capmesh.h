@@ -344,7 +344,9 @@ capmesh_v1_status capmesh_v1_remesh(const struct capmesh_v1_mesh_view *mesh, con
 /**
  * Remeshing quality of `remeshed` against `original` (any two triangle meshes): the JSON
  * object has `faces`, `vertices`, `d_face`, `d_face_relative`, `d_surface_vertex(_relative)`,
- * `d_surface_sampled(_relative)`, `min_angle_deg` and `zero_area_faces`. `out_report_json`
+ * `d_surface_sampled(_relative)`, `min_angle_deg`, `zero_area_faces`, `mean_min_angle_deg`,
+ * `share_faces_angle_below_30`, `max_angle_deg`, `share_interior_valence_6`,
+ * `self_intersecting_faces(_input)` and `hausdorff_distance(_relative)`. `out_report_json`
  * must not be NULL.
  *
  * # Safety

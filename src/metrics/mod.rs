@@ -1,9 +1,15 @@
 //! Distortion and remeshing metrics, shared by the pipeline reports, the CLI, the tests and
 //! the benchmarks.
 
+pub mod angles;
 pub mod closest;
 pub mod distortion;
+pub mod hausdorff;
 pub mod remeshing;
+pub mod sampling;
+pub mod self_intersection;
+pub mod valence;
 
 pub use distortion::{angle_distortion, area_distortion, beltrami_abs, conformal_energy, conformal_energy_surface_weighted, Stats};
 pub use remeshing::{face_area_deviation, remesh_metrics, RemeshMetrics};
+pub use self_intersection::{count_self_intersecting_faces, self_intersecting_faces};

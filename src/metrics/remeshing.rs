@@ -3,12 +3,21 @@
 //! from the remeshed vertices to the original surface, and, because a pulled-back vertex lies
 //! on the surface for every method that projects, a symmetric face-sampled distance (design
 //! notes). Distances are also given divided by the original's bounding-box diagonal.
+//!
+//! Shape (issue 26): the angle statistics of [`super::angles`], the share of interior
+//! vertices of valence 6 ([`super::valence`]), the self-intersecting faces of the remesh and
+//! of the input ([`super::self_intersection`], MeshLab's definition), and the one-sided
+//! Hausdorff distance from the remesh to the input ([`super::hausdorff`]).
 
+use super::angles::angle_quality;
 use super::closest::SurfaceDistance;
-use crate::mesh::geometry::{face_areas, triangle_angles};
+use super::hausdorff::max_distance;
+use super::sampling::{distances, face_samples, mean};
+use super::self_intersection::count_self_intersecting_faces;
+use super::valence::interior_valence6_share;
+use crate::mesh::geometry::face_areas;
 use crate::mesh::repair::{zero_area_faces, DEFAULT_ZERO_AREA_REL_TOL};
 use crate::mesh::TriMesh;
-use rayon::prelude::*;
 
 /// Quality of a remeshed surface against its original.
 #[derive(Debug, Clone, Copy, Default, serde::Serialize)]
@@ -36,6 +45,26 @@ pub struct RemeshMetrics {
     /// have none on the shared meshes and on coarse inputs (tests/remesh.rs; see
     /// [`crate::remesh::pullback::rim_band_into_polygon`] for where they came from).
     pub zero_area_faces: usize,
+    /// Mean over the remesh's faces of each face's smallest angle, degrees (60 for an
+    /// equilateral mesh).
+    pub mean_min_angle_deg: f64,
+    /// Share (0-1) of the remesh's faces with an angle below 30 degrees.
+    pub share_faces_angle_below_30: f64,
+    /// Largest angle of the remeshed surface, degrees.
+    pub max_angle_deg: f64,
+    /// Share (0-1) of the remesh's interior vertices (on no boundary edge) of valence 6.
+    pub share_interior_valence_6: f64,
+    /// Faces of the remesh that intersect a face other than an edge neighbour (MeshLab's
+    /// `compute_selection_by_self_intersections_per_face`, see
+    /// [`crate::metrics::self_intersection`]).
+    pub self_intersecting_faces: usize,
+    /// The same count for the input mesh.
+    pub self_intersecting_faces_input: usize,
+    /// One-sided Hausdorff distance: the largest distance from a point sampled on the
+    /// remesh's faces to the original surface.
+    pub hausdorff_distance: f64,
+    /// `hausdorff_distance` / bounding-box diagonal of the original.
+    pub hausdorff_distance_relative: f64,
 }
 
 /// Face area deviation `(d_face, d_face / mean area)`.
@@ -49,39 +78,8 @@ pub fn face_area_deviation(mesh: &TriMesh) -> (f64, f64) {
     (d, if mean > 0.0 { d / mean } else { 0.0 })
 }
 
-/// Sample points on each face: the centroid and the midpoints between it and the corners.
-fn samples(mesh: &TriMesh) -> Vec<[f64; 3]> {
-    let mut out = Vec::with_capacity(4 * mesh.n_faces());
-    for f in &mesh.faces {
-        let [a, b, c] = f.map(|v| mesh.vertices[v as usize]);
-        let g = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0, (a[2] + b[2] + c[2]) / 3.0];
-        out.push(g);
-        for p in [a, b, c] {
-            out.push([(g[0] + p[0]) / 2.0, (g[1] + p[1]) / 2.0, (g[2] + p[2]) / 2.0]);
-        }
-    }
-    out
-}
-
-/// Consecutive samples that share the nearest-face hint of [`mean_distance`].
-const HINT_CHUNK: usize = 512;
-
 fn mean_distance(points: &[[f64; 3]], to: &SurfaceDistance) -> f64 {
-    if points.is_empty() {
-        return 0.0;
-    }
-    // Distances in parallel, summed in order: the figure does not depend on thread timing.
-    // Each query starts from the previous one's nearest face (the samples come face by face,
-    // so that face bounds the search at once), within fixed chunks: which face ties are
-    // broken by, and so the last digits, do not depend on how the threads split the work.
-    let d: Vec<f64> = points
-        .par_chunks(HINT_CHUNK)
-        .flat_map_iter(|chunk| {
-            let mut hint = None;
-            chunk.iter().map(move |&p| to.distance_near(p, &mut hint))
-        })
-        .collect();
-    d.iter().sum::<f64>() / points.len() as f64
+    mean(&distances(points, to))
 }
 
 /// All remeshing metrics of `remeshed` against `original`.
@@ -91,16 +89,13 @@ pub fn remesh_metrics(original: &TriMesh, remeshed: &TriMesh) -> RemeshMetrics {
     let to_original = SurfaceDistance::new(original);
     let to_remeshed = SurfaceDistance::new(remeshed);
     let d_vertex = mean_distance(&remeshed.vertices, &to_original);
-    let d_sampled = 0.5 * (mean_distance(&samples(remeshed), &to_original) + mean_distance(&samples(original), &to_remeshed));
-    let min_angle = remeshed
-        .faces
-        .iter()
-        .map(|f| {
-            let [a, b, c] = f.map(|v| remeshed.vertices[v as usize]);
-            triangle_angles(a, b, c).into_iter().fold(f64::INFINITY, f64::min)
-        })
-        .fold(f64::INFINITY, f64::min)
-        .to_degrees();
+    // The remesh's samples give both the mean (one half of the symmetric figure) and the max.
+    let from_remeshed = distances(&face_samples(remeshed), &to_original);
+    let d_sampled = 0.5 * (mean(&from_remeshed) + mean_distance(&face_samples(original), &to_remeshed));
+    let hausdorff = max_distance(&from_remeshed);
+    let angles = angle_quality(remeshed);
+    let min_angle = angles.min_angle_deg;
+    let (self_intersecting, self_intersecting_input) = rayon::join(|| count_self_intersecting_faces(remeshed), || count_self_intersecting_faces(original));
     RemeshMetrics {
         faces: remeshed.n_faces(),
         vertices: remeshed.n_vertices(),
@@ -112,5 +107,13 @@ pub fn remesh_metrics(original: &TriMesh, remeshed: &TriMesh) -> RemeshMetrics {
         d_surface_sampled_relative: d_sampled / diag,
         min_angle_deg: if min_angle.is_finite() { min_angle } else { 0.0 },
         zero_area_faces: zero_area_faces(remeshed, DEFAULT_ZERO_AREA_REL_TOL).len(),
+        mean_min_angle_deg: angles.mean_min_angle_deg,
+        share_faces_angle_below_30: angles.share_below_30,
+        max_angle_deg: angles.max_angle_deg,
+        share_interior_valence_6: interior_valence6_share(remeshed),
+        self_intersecting_faces: self_intersecting,
+        self_intersecting_faces_input: self_intersecting_input,
+        hausdorff_distance: hausdorff,
+        hausdorff_distance_relative: hausdorff / diag,
     }
 }

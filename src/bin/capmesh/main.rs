@@ -162,7 +162,7 @@ enum Command {
         domain: Domain,
     },
     /// Remeshing metrics of any remeshed surface against its original: d_face, surface
-    /// distances, minimum angle.
+    /// distances (mean and one-sided Hausdorff), angles, valence, self-intersecting faces.
     Metrics {
         /// The original mesh.
         original: PathBuf,
@@ -262,6 +262,12 @@ fn print_quality(q: &capmesh::metrics::RemeshMetrics) -> Result<(), String> {
     outln!("d_surface_sampled          {:.6e} ({:.3e} of the diagonal)", q.d_surface_sampled, q.d_surface_sampled_relative);
     outln!("min_angle_deg              {:.2}", q.min_angle_deg);
     outln!("zero_area_faces            {}", q.zero_area_faces);
+    outln!("mean_min_angle_deg         {:.2}", q.mean_min_angle_deg);
+    outln!("faces_angle_below_30       {:.2}%", 100.0 * q.share_faces_angle_below_30);
+    outln!("max_angle_deg              {:.2}", q.max_angle_deg);
+    outln!("interior_valence_6         {:.2}%", 100.0 * q.share_interior_valence_6);
+    outln!("self_intersecting_faces    {} (input {})", q.self_intersecting_faces, q.self_intersecting_faces_input);
+    outln!("hausdorff_distance         {:.6e} ({:.3e} of the diagonal)", q.hausdorff_distance, q.hausdorff_distance_relative);
     Ok(())
 }
 
