@@ -325,7 +325,7 @@ fn results_do_not_depend_on_the_number_of_threads() {
 /// own self-intersection count and no Hausdorff distance.
 #[test]
 fn metrics_report_shape_and_self_intersections() {
-    let dir = temp_dir("metrics");
+    let dir = TempDir::new("cli-metrics");
     let input = data("closed_bunny_npm.obj.gz");
     let remeshed = dir.join("bunny.ply");
     let run = capmesh().args(["remesh", "--quiet"]).arg(&input).arg("-o").arg(&remeshed).args(["--faces", "2000"]).output().unwrap();

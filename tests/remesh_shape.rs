@@ -7,7 +7,7 @@
 use capmesh::io::read_mesh;
 use capmesh::mesh::{validate, SurfaceKind, TriMesh};
 use capmesh::progress::NoProgress;
-use capmesh::remesh::shape::AngleStats;
+use capmesh::metrics::angles::angle_quality;
 use capmesh::remesh::{remesh, CapGrid, Optimize, RemeshOptions};
 use std::path::Path;
 
@@ -74,7 +74,7 @@ fn check(name: &str) {
     let mesh = load(name);
     let (shaped, rep) = run(&mesh, Optimize::ShapeAndArea);
     let (plain, plain_rep) = run(&mesh, Optimize::Area);
-    let (a, b) = (AngleStats::of(&shaped.vertices, &shaped.faces), AngleStats::of(&plain.vertices, &plain.faces));
+    let (a, b) = (angle_quality(&shaped), angle_quality(&plain));
     eprintln!(
         "{name}: mean smallest angle {:.1} (area only {:.1}), below 30 deg {:.2}% ({:.2}%), smallest {:.1} ({:.1}), d_face_rel {:.4} ({:.4}), flips {}",
         a.mean_min_angle_deg,
@@ -161,7 +161,7 @@ fn square_sheet_keeps_its_corners() {
         let nearest = out.vertices.iter().map(|p| (p[0] - corner[0]).hypot(p[1] - corner[1])).fold(f64::INFINITY, f64::min);
         assert!(nearest < 1e-9, "corner {corner:?}: nearest remesh vertex {nearest} away");
     }
-    let stats = AngleStats::of(&out.vertices, &out.faces);
+    let stats = angle_quality(&out);
     assert!(stats.share_below_30 < 0.02 && stats.mean_min_angle_deg > 45.0, "{stats:?}");
     // Boundary edges against interior edges.
     let b = boundary_vertices(&out);
@@ -198,7 +198,7 @@ fn resampling_keeps_the_invariants() {
     options.shape = options.shape.with_resample(true);
     let (out, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
     let (plain, _) = run(&mesh, Optimize::ShapeAndArea);
-    let (a, b) = (AngleStats::of(&out.vertices, &out.faces), AngleStats::of(&plain.vertices, &plain.faces));
+    let (a, b) = (angle_quality(&out), angle_quality(&plain));
     eprintln!("{name} resampled: {a:?}, {} splits, {} collapses; without: {b:?}", rep.shape.splits, rep.shape.collapses);
     assert!(rep.shape.splits > 0 && rep.shape.collapses > 0, "{:?}", rep.shape);
     assert_eq!(validate(&out).unwrap().0, SurfaceKind::OpenDisk);

@@ -14,7 +14,7 @@ use rayon::prelude::*;
 pub const SLIVER_ANGLE_DEG: f64 = 30.0;
 
 /// Angle statistics of a triangle mesh, in degrees.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct AngleQuality {
     /// Mean over faces of the face's smallest angle.
     pub mean_min_angle_deg: f64,
@@ -42,14 +42,18 @@ pub fn face_angle_range(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> (f64, f64) {
 /// [`AngleQuality`] of `mesh` (all zero for a mesh without faces). The mean is summed in
 /// face order, whatever the thread count.
 pub fn angle_quality(mesh: &TriMesh) -> AngleQuality {
-    if mesh.faces.is_empty() {
+    angle_quality_of(&mesh.vertices, &mesh.faces)
+}
+
+/// [`angle_quality`] of the faces `faces` on `vertices`.
+pub fn angle_quality_of(vertices: &[[f64; 3]], faces: &[[u32; 3]]) -> AngleQuality {
+    if faces.is_empty() {
         return AngleQuality::default();
     }
-    let ranges: Vec<(f64, f64)> = mesh
-        .faces
+    let ranges: Vec<(f64, f64)> = faces
         .par_iter()
         .map(|f| {
-            let [a, b, c] = f.map(|v| mesh.vertices[v as usize]);
+            let [a, b, c] = f.map(|v| vertices[v as usize]);
             face_angle_range(a, b, c)
         })
         .collect();

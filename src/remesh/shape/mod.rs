@@ -22,7 +22,6 @@ pub(crate) mod resample;
 pub(crate) mod smooth;
 pub(crate) mod state;
 
-use crate::mesh::geometry::triangle_angles;
 use rayon::prelude::*;
 use state::{Role, Shaping, SurfaceLift};
 
@@ -93,42 +92,6 @@ impl ShapeOptions {
     }
 }
 
-/// Angles of a mesh's faces.
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
-pub struct AngleStats {
-    /// Mean over faces of each face's smallest angle, degrees.
-    pub mean_min_angle_deg: f64,
-    /// Smallest angle of all faces, degrees.
-    pub min_angle_deg: f64,
-    /// Largest angle of all faces, degrees.
-    pub max_angle_deg: f64,
-    /// Share of faces with an angle below 30 degrees.
-    pub share_below_30: f64,
-}
-
-impl AngleStats {
-    /// The angle statistics of the faces `faces` on `vertices`.
-    pub fn of(vertices: &[[f64; 3]], faces: &[[u32; 3]]) -> Self {
-        if faces.is_empty() {
-            return Self::default();
-        }
-        let per_face: Vec<(f64, f64)> = faces
-            .par_iter()
-            .map(|f| {
-                let t = triangle_angles(vertices[f[0] as usize], vertices[f[1] as usize], vertices[f[2] as usize]);
-                (t[0].min(t[1]).min(t[2]).to_degrees(), t[0].max(t[1]).max(t[2]).to_degrees())
-            })
-            .collect();
-        let n = per_face.len() as f64;
-        Self {
-            mean_min_angle_deg: per_face.iter().map(|p| p.0).sum::<f64>() / n,
-            min_angle_deg: per_face.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
-            max_angle_deg: per_face.iter().map(|p| p.1).fold(0.0, f64::max),
-            share_below_30: per_face.iter().filter(|p| p.0 < 30.0).count() as f64 / n,
-        }
-    }
-}
-
 /// What the shape stage did.
 #[derive(Debug, Clone, Copy, Default, serde::Serialize)]
 pub struct ShapeReport {
@@ -145,9 +108,9 @@ pub struct ShapeReport {
     /// Boundary vertices put on the input's corners.
     pub corners_kept: usize,
     /// The remesh's angles before the stage.
-    pub before: AngleStats,
+    pub before: crate::metrics::angles::AngleQuality,
     /// The remesh's angles after it.
-    pub after: AngleStats,
+    pub after: crate::metrics::angles::AngleQuality,
 }
 
 /// The edge length of equilateral faces of `mesh`'s mean area.
@@ -183,7 +146,7 @@ pub(crate) fn optimize_shape(
     options: &ShapeOptions,
 ) -> (Vec<[u32; 3]>, Vec<bool>, ShapeReport) {
     let n = plane.len();
-    let before = AngleStats::of(position, &faces);
+    let before = crate::metrics::angles::angle_quality_of(position, &faces);
     let mut report = ShapeReport { before, after: before, ..Default::default() };
     let (next, _) = boundary::boundary_cycle(&faces, n);
     let role: Vec<Role> = (0..n)
@@ -273,7 +236,7 @@ pub(crate) fn optimize_shape(
         report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
     }
     resample::compact(&mut mesh, &mut arc);
-    report.after = AngleStats::of(&mesh.position, &mesh.faces);
+    report.after = crate::metrics::angles::angle_quality_of(&mesh.position, &mesh.faces);
     let stays = mesh.role.iter().map(|&r| r != Role::Free).collect();
     *plane = mesh.plane;
     *position = mesh.position;
