@@ -349,7 +349,7 @@ fn refinement_equalization_and_puncture_end_options_are_passed_through() {
 
 /// Share of the faces of `mesh` with an angle below 30 degrees.
 fn share_below_30(mesh: &TriMesh) -> f64 {
-    capmesh::metrics::angles::angle_quality(&mesh).share_below_30
+    capmesh::metrics::angles::angle_quality(mesh).share_below_30
 }
 
 /// The shape stage's options reach the library: the default remesh is the shape+area one
