@@ -103,7 +103,7 @@ pub fn check_pipeline(data: &[u8]) {
                 assert!((r - 1.0).abs() < 1e-9, "vertex {v} at {p:?} is not on the unit sphere");
             }
         }
-        let options = RemeshOptions { grid: CapGrid::Uniform { faces: 60 }, param, area_equalization: 3 };
+        let options = RemeshOptions { grid: CapGrid::Uniform { faces: 60 }, param, area_equalization: 3, ..Default::default() };
         if let Ok((out, _)) = remesh(&mesh, &options, &NoProgress) {
             check_indices(&out);
             assert!(out.vertices.iter().all(|p| p.iter().all(|x| x.is_finite())), "non-finite remeshed vertex");
