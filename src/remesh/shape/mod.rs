@@ -1,15 +1,18 @@
 //! Shape optimisation of the pulled-back remesh (ours; the paper pulls the cap mesh back as
-//! is, Sec. 4.2, and measures only its areas). See docs/method.md, "Remesh shape".
+//! is, Sec. 4.2, and measures only its areas). See docs/method.md, "18. Remesh shape".
 //!
 //! An area-preserving map has Jacobian singular values `s1 s2 = 1` with `s1 / s2` up to 3-10
 //! where the angle distortion is large, so a uniform cap grid comes back as a lattice of
 //! equal areas stretched by `s1 / s2`: no connectivity of those points is well shaped. This
-//! stage moves the points and changes the connectivity, alternating
-//! 1. edge flips towards the largest smallest angle of the surface triangles ([`flips`]),
-//! 2. tangential relaxation towards a centroidal tessellation on the surface, made in the
-//!    map's plane and lifted through the inverse map ([`smooth`]); boundary vertices of an
-//!    open surface slide along the input's boundary, its corners kept ([`boundary`]).
+//! stage moves the points and changes the connectivity:
+//! 1. relaxation iterations: valence and max-min-angle edge flips judged on the surface
+//!    triangles ([`flips`]), then tangential relaxation towards a centroidal tessellation on
+//!    the surface, made in the map's plane and lifted through the inverse map ([`smooth`]);
+//!    boundary vertices of an open surface slide along the input's boundary, its corners
+//!    kept ([`boundary`]); optionally edge splits and collapses ([`resample`]);
+//! 2. polish iterations: angle flips and a joint area-and-shape Gauss-Newton step ([`polish`]).
 //!
+//! A closed surface's rim and bottom disk may first be merged into one vertex ([`bottom`]).
 //! Every vertex stays exactly on the input surface (it is always the lift of a planar point)
 //! and the planar mesh stays an embedding. The area equalization ([`super::equalize`]) runs
 //! after it.
