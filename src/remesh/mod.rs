@@ -204,6 +204,8 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     // the equalization moves it. The planar map covers the polygon of its boundary (an open
     // surface's boundary, a closed one's punctured quad), inscribed in the rim: cap points
     // near the rim are moved inside it ([`pullback::rim_band_into_polygon`]).
+    // The input's boundary vertices (none on a closed surface): the rim polygon and the track.
+    let input_boundary = is_boundary_vertex(mesh);
     let (grid_mesh, planar, mut positions, in_plane) = if closed {
         let grid = grid::close_bottom(cap);
         let split = grid.first_bottom_vertex.min(grid.mesh.vertices.len());
@@ -215,8 +217,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         (grid.mesh, planar, positions, split)
     } else {
         let mut planar: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
-        let boundary = is_boundary_vertex(mesh);
-        let (corners, rim_radius) = polygon_of((0..mesh.n_vertices() as u32).filter(|&v| boundary[v as usize]), &map.plane);
+        let (corners, rim_radius) = polygon_of((0..mesh.n_vertices() as u32).filter(|&v| input_boundary[v as usize]), &map.plane);
         pullback::rim_band_into_polygon(&mut planar, &corners, rim_radius);
         let positions = pullback::pull_back_planar(mesh, &map.plane, &planar).ok_or_else(no_face)?;
         let n = cap.vertices.len();
@@ -251,7 +252,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     if shaped {
         progress::check(progress, Stage::Remesh, 0.3, "shaping the triangles")?;
         let lift = shape::state::SurfaceLift::new(mesh, &map.plane, &top_faces);
-        let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &is_boundary_vertex(mesh)) };
+        let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &input_boundary) };
         let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed };
         let (new_faces, stays, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
         faces = new_faces;

@@ -7,9 +7,9 @@
 //! bent by more than the crease bound (creases of the input are kept). Each accepted flip
 //! raises the pair's smallest angle, so a pass cannot cycle; passes repeat until none flips.
 
-use super::state::Shaping;
+use super::state::{edge_faces, smallest_angle, third, Shaping};
 use crate::mesh::fasthash::FastMap;
-use crate::mesh::geometry::{cross, dot, norm, sub, triangle_angles};
+use crate::mesh::geometry::{cross, dot, norm, sub};
 
 /// Smallest gain of the pair's smallest angle (radians) for a flip: ties are not flipped back
 /// and forth.
@@ -55,15 +55,8 @@ fn flip(mesh: &mut Shaping, crease: f64, criterion: Criterion) -> usize {
             valence[v as usize] += 1;
         }
     }
-    // Each undirected interior edge: its two faces (the one where it runs a -> b, then b -> a).
-    let mut edges: FastMap<(u32, u32), [u32; 2]> = FastMap::default();
-    for (t, f) in mesh.faces.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            let slot = edges.entry((a.min(b), a.max(b))).or_insert([u32::MAX; 2]);
-            slot[usize::from(a > b)] = t as u32;
-        }
-    }
+    // Each undirected edge: its two faces (the one where it runs a -> b, then b -> a).
+    let mut edges = edge_faces(&mesh.faces);
     // Regular valence: 6 inside, 4 on the boundary (a boundary vertex has one face fewer
     // than neighbours, so count faces: 6 inside, 3 on the boundary).
     let mut regular = vec![6i32; n];
@@ -131,12 +124,6 @@ fn flip(mesh: &mut Shaping, crease: f64, criterion: Criterion) -> usize {
     flips
 }
 
-/// The corner of `face` that follows the directed edge `a -> b` (`None` if the face does not
-/// run `a -> b`).
-fn third(face: [u32; 3], a: u32, b: u32) -> Option<u32> {
-    (0..3).find(|&k| face[k] == a && face[(k + 1) % 3] == b).map(|k| face[(k + 2) % 3])
-}
-
 /// Replace face `from` by `to` among the faces of edge `(u, v)`.
 fn reassign(edges: &mut FastMap<(u32, u32), [u32; 2]>, u: u32, v: u32, from: u32, to: u32) {
     if let Some(slot) = edges.get_mut(&(u.min(v), u.max(v))) {
@@ -154,8 +141,8 @@ fn reassign(edges: &mut FastMap<(u32, u32), [u32; 2]>, u: u32, v: u32, from: u32
 fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], cos_crease: f64, floor: Option<f64>) -> bool {
     let x = |v: u32| mesh.position[v as usize];
     let p = |v: u32| mesh.plane[v as usize];
-    let old = min_angle(x(a), x(b), x(c)).min(min_angle(x(b), x(a), x(d)));
-    let new = min_angle(x(c), x(a), x(d)).min(min_angle(x(d), x(b), x(c)));
+    let old = smallest_angle(x(a), x(b), x(c)).min(smallest_angle(x(b), x(a), x(d)));
+    let new = smallest_angle(x(c), x(a), x(d)).min(smallest_angle(x(d), x(b), x(c)));
     let enough = match floor {
         None => new > old + MIN_GAIN,
         Some(floor) => new >= old.min(floor),
@@ -179,12 +166,6 @@ fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], cos_crease: f64, floor: Opti
 
 /// A pair of faces bent by more than this (degrees) is a fold of the remesh, not a crease.
 const FOLD_DEG: f64 = 120.0;
-
-/// The smallest angle of a triangle.
-fn min_angle(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    let t = triangle_angles(a, b, c);
-    t[0].min(t[1]).min(t[2])
-}
 
 /// Cosine of the angle between the normals of `(a, b, c)` and `(b, a, d)`: 1 when flat, -1
 /// when folded back (1 for a degenerate face, which the angle test has already judged).

@@ -13,8 +13,7 @@
 //! also only when it creates no edge longer than the split length.
 
 use super::boundary::Track;
-use super::state::{Incidence, Role, Shaping, SurfaceLift};
-use crate::mesh::fasthash::FastMap;
+use super::state::{edge_faces, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
 use crate::mesh::geometry::{cross, dot, norm, signed_area_2d, sub};
 
 /// Edges longer than this many target lengths are split.
@@ -30,35 +29,11 @@ const MAX_TURN_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
 /// one before.
 const COLLAPSE_MIN_ANGLE_DEG: f64 = 25.0;
 
-/// The smallest angle of a triangle.
-fn smallest_angle(t: [[f64; 3]; 3]) -> f64 {
-    let a = crate::mesh::geometry::triangle_angles(t[0], t[1], t[2]);
-    a[0].min(a[1]).min(a[2])
-}
-
 /// Most neighbours a collapse may leave a vertex with (two fewer on the boundary).
 const MAX_VALENCE: usize = 8;
 
-/// Each undirected edge `(min, max)`: its face where it runs min -> max, and where it runs
-/// max -> min (`u32::MAX` when none).
-fn edge_faces(faces: &[[u32; 3]]) -> FastMap<(u32, u32), [u32; 2]> {
-    let mut edges: FastMap<(u32, u32), [u32; 2]> = FastMap::default();
-    for (t, f) in faces.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            edges.entry((a.min(b), a.max(b))).or_insert([u32::MAX; 2])[usize::from(a > b)] = t as u32;
-        }
-    }
-    edges
-}
-
 fn length(mesh: &Shaping, a: u32, b: u32) -> f64 {
     norm(sub(mesh.position[a as usize], mesh.position[b as usize]))
-}
-
-/// The corner of `face` after the directed edge `a -> b`.
-fn third(face: [u32; 3], a: u32, b: u32) -> Option<u32> {
-    (0..3).find(|&k| face[k] == a && face[(k + 1) % 3] == b).map(|k| face[(k + 2) % 3])
 }
 
 /// Add a vertex; returns its number.
@@ -225,7 +200,7 @@ pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, li
             let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
             let n1 = cross(sub(y[1], y[0]), sub(y[2], y[0]));
             let long = f.iter().any(|&w| w != u && w != v && norm(sub(mesh.position[w as usize], x)) > max_len);
-            let sliver = smallest_angle(y) < smallest_angle(old).min(COLLAPSE_MIN_ANGLE_DEG.to_radians());
+            let sliver = smallest_angle(y[0], y[1], y[2]) < smallest_angle(old[0], old[1], old[2]).min(COLLAPSE_MIN_ANGLE_DEG.to_radians());
             mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1) && !long && !sliver
         });
         if !ok {

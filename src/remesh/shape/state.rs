@@ -2,7 +2,8 @@
 //! surface, and what each vertex may do. A vertex's surface position is always the lift of its
 //! planar point through the inverse map (paper Sec. 4.2), so it lies exactly on the input.
 
-use crate::mesh::geometry::signed_area_2d;
+use crate::mesh::fasthash::FastMap;
+use crate::mesh::geometry::{signed_area_2d, triangle_angles};
 use crate::mesh::TriMesh;
 use crate::remesh::locate::Locator;
 
@@ -139,4 +140,29 @@ impl Incidence {
     pub fn of(&self, v: usize) -> &[u32] {
         &self.faces[self.start[v]..self.start[v + 1]]
     }
+}
+
+/// Each undirected edge `(min, max)`: its face where it runs min -> max, and where it runs
+/// max -> min (`u32::MAX` when none).
+pub(crate) fn edge_faces(faces: &[[u32; 3]]) -> FastMap<(u32, u32), [u32; 2]> {
+    let mut edges: FastMap<(u32, u32), [u32; 2]> = FastMap::default();
+    for (t, f) in faces.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_insert([u32::MAX; 2])[usize::from(a > b)] = t as u32;
+        }
+    }
+    edges
+}
+
+/// The corner of `face` after the directed edge `a -> b` (`None` if the face does not run
+/// `a -> b`).
+pub(crate) fn third(face: [u32; 3], a: u32, b: u32) -> Option<u32> {
+    (0..3).find(|&k| face[k] == a && face[(k + 1) % 3] == b).map(|k| face[(k + 2) % 3])
+}
+
+/// The smallest angle (radians) of the triangle `(a, b, c)`.
+pub(crate) fn smallest_angle(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    let t = triangle_angles(a, b, c);
+    t[0].min(t[1]).min(t[2])
 }
