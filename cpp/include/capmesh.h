@@ -289,8 +289,8 @@ typedef struct capmesh_v1_remesh_options {
    */
   double shape_weight;
   /**
-   * 1 = also split long and collapse short edges in the shape stage (better angles on smooth
-   * surfaces, slivers where thin parts fold at the remesh's scale); 0 = off (default).
+   * 1 = split long and collapse short edges in the shape stage where the map is resolved
+   * at the remesh's scale (default; better angles); 0 = off (the grid's vertex count).
    */
   int32_t resample;
 } capmesh_v1_remesh_options;

@@ -51,7 +51,7 @@ def test_filters_are_registered_with_capmesh_defaults(plugin, mesh_file):
     assert remesh["grid"] == 0 and remesh["faces"] > 0 and remesh["rings"] > 0 and remesh["sectors"] > 0
     assert remesh["optimize"] == 0  # shape+area
     assert remesh["relaxiterations"] == 20 and remesh["polishiterations"] == 20
-    assert remesh["shapeweight"] == pytest.approx(0.3) and not remesh["resample"]
+    assert remesh["shapeweight"] == pytest.approx(0.3) and remesh["resample"]
     assert ms.filter_parameter_values("capmesh_harmonics_reconstruction")["order"] > 0
 
 

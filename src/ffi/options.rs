@@ -96,8 +96,8 @@ pub struct capmesh_v1_remesh_options {
     /// Weight of the shape term against the area term in the polish, finite and >= 0 (larger:
     /// better angles, less equal areas). Default 0.3.
     pub shape_weight: f64,
-    /// 1 = also split long and collapse short edges in the shape stage (better angles on smooth
-    /// surfaces, slivers where thin parts fold at the remesh's scale); 0 = off (default).
+    /// 1 = split long and collapse short edges in the shape stage where the map is resolved
+    /// at the remesh's scale (default; better angles); 0 = off (the grid's vertex count).
     pub resample: i32,
 }
 

@@ -110,10 +110,10 @@ enum Command {
         /// angles, less equal areas).
         #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().shape_weight)]
         shape_weight: f64,
-        /// Also split long and collapse short edges in the shape stage: better angles on
-        /// smooth surfaces, slivers where thin parts fold at the remesh's scale.
+        /// Keep the pulled-back vertices' count and the grid's rows: no edge splits and
+        /// collapses in the shape stage (they are on by default and give better angles).
         #[arg(long)]
-        resample: bool,
+        no_resample: bool,
         #[command(flatten)]
         map: map_args::MapArgs,
     },
@@ -277,7 +277,7 @@ fn run(cli: Cli) -> Result<(), String> {
             harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, quiet: cli.quiet })
         }
         Command::Shape { inputs, csv, jobs, domain } => shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, quiet: cli.quiet }),
-        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, resample, map } => {
+        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -287,7 +287,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let read_seconds = t_read.elapsed().as_secs_f64();
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-            let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(resample);
+            let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample);
             let mut options = RemeshOptions { grid, area_equalization, optimize, shape, ..Default::default() };
             map.apply(&mut options.param);
             let (out, rep) = remesh(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;

@@ -18,7 +18,8 @@ const MIN_GAIN: f64 = 1e-6;
 /// Planar area a flipped face must keep, relative to the pair's planar area.
 const MIN_PLANAR_SHARE: f64 = 1e-6;
 
-/// Passes over the edges at most in one call.
+/// Passes at most in one call (the first over every edge, the others over the edges of the
+/// pairs flipped in the pass before).
 const MAX_PASSES: usize = 8;
 
 /// Flip edges of `mesh` until no flip raises a pair's smallest angle (at most
@@ -70,6 +71,7 @@ fn flip(mesh: &mut Shaping, crease: f64, criterion: Criterion) -> usize {
     keys.sort_unstable();
     let cos_crease = crease.cos();
     let mut flips = 0;
+    let mut changed: Vec<(u32, u32)> = Vec::new();
     for _ in 0..MAX_PASSES {
         let mut this_pass = 0;
         for &(a, b) in &keys {
@@ -113,13 +115,20 @@ fn flip(mesh: &mut Shaping, crease: f64, criterion: Criterion) -> usize {
             reassign(&mut edges, b, c, t1, t2);
             reassign(&mut edges, a, d, t2, t1);
             this_pass += 1;
+            // The next pass visits the edges of the flipped pairs only: an angle verdict
+            // depends on the pair alone (a valence verdict also on the four valences, whose
+            // other edges wait for the next call).
+            for (u, v) in [(a, c), (c, b), (b, d), (d, a), (c, d)] {
+                changed.push((u.min(v), u.max(v)));
+            }
         }
         flips += this_pass;
         if this_pass == 0 {
             break;
         }
-        keys = edges.iter().filter(|(_, f)| f[0] != u32::MAX && f[1] != u32::MAX).map(|(&k, _)| k).collect();
+        keys = std::mem::take(&mut changed);
         keys.sort_unstable();
+        keys.dedup();
     }
     flips
 }

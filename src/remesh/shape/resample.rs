@@ -10,7 +10,10 @@
 //! midpoint), a collapse keeps the remaining vertex's planar point or moves it to the
 //! midpoint, so every vertex stays on the surface; an operation is made only when every
 //! changed face keeps its planar orientation and its side on the surface, and a collapse
-//! also only when it creates no edge longer than the split length.
+//! also only when it creates no edge longer than the split length. Neither is made where the
+//! inverse map is not resolved at the edge's scale (the edge stretched more than
+//! [`MAX_STRETCH`] times against the map's mean scale, or a split's lifted midpoint far from
+//! the chord): there (the hand's finger webs, the bunny's ears) they left slivers.
 
 use super::boundary::Track;
 use super::state::{edge_faces, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
@@ -25,6 +28,11 @@ pub(crate) const COLLAPSE: f64 = 4.0 / 5.0;
 /// that tilts a face more folds the surface where it is curved at the edge's scale.
 const MAX_TURN_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
 
+/// Largest distance, in edge lengths, between a split's new vertex and its edge's
+/// midpoint: farther, the planar edge crosses a part of the surface the map compresses
+/// below the remesh's scale.
+const MAX_LIFT_OFFSET: f64 = 0.25;
+
 /// Smallest angle (degrees) a collapse may leave in a face, unless the face had a smaller
 /// one before.
 const COLLAPSE_MIN_ANGLE_DEG: f64 = 25.0;
@@ -34,6 +42,31 @@ const MAX_VALENCE: usize = 8;
 
 fn length(mesh: &Shaping, a: u32, b: u32) -> f64 {
     norm(sub(mesh.position[a as usize], mesh.position[b as usize]))
+}
+
+/// Largest stretch of an edge by the inverse map, against the map's mean scale, at which the
+/// edge is split or collapsed: beyond it the map is far from area-preserving at the remesh's
+/// scale (a fold, a finger's web) and moving vertices there makes slivers.
+const MAX_STRETCH: f64 = 3.0;
+
+/// The inverse map's mean length scale: the square root of surface area over planar area.
+fn mean_scale(mesh: &Shaping) -> f64 {
+    let (mut a3, mut a2) = (0.0, 0.0);
+    for f in mesh.faces.iter().filter(|f| f.iter().all(|&v| mesh.planar(v))) {
+        let y = f.map(|v| mesh.position[v as usize]);
+        let p = f.map(|v| mesh.plane[v as usize]);
+        a3 += 0.5 * norm(cross(sub(y[1], y[0]), sub(y[2], y[0])));
+        a2 += 0.5 * signed_area_2d(p[0], p[1], p[2]).abs();
+    }
+    if a2 > 0.0 { (a3 / a2).sqrt() } else { 0.0 }
+}
+
+/// Whether the inverse map stretches edge `(a, b)` by no more than [`MAX_STRETCH`] either way.
+fn resolved(mesh: &Shaping, scale: f64, a: u32, b: u32) -> bool {
+    let (pa, pb) = (mesh.plane[a as usize], mesh.plane[b as usize]);
+    let planar = ((pa[0] - pb[0]).powi(2) + (pa[1] - pb[1]).powi(2)).sqrt() * scale;
+    let l = length(mesh, a, b);
+    l <= MAX_STRETCH * planar && planar <= MAX_STRETCH * l
 }
 
 /// Add a vertex; returns its number.
@@ -51,9 +84,10 @@ fn push_vertex(mesh: &mut Shaping, arc: &mut Vec<f64>, q: [f64; 2], x: [f64; 3],
 /// Returns the number of splits.
 pub(crate) fn split_long_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &mut Vec<f64>, lift: &SurfaceLift, max_len: f64) -> usize {
     let edges = edge_faces(&mesh.faces);
+    let scale = mean_scale(mesh);
     let mut long: Vec<(f64, (u32, u32), [u32; 2])> = edges
         .iter()
-        .filter(|(&(a, b), _)| mesh.planar(a) && mesh.planar(b))
+        .filter(|(&(a, b), _)| mesh.planar(a) && mesh.planar(b) && resolved(mesh, scale, a, b))
         .map(|(&(a, b), &t)| (length(mesh, a, b), (a, b), t))
         .filter(|&(l, _, _)| l > max_len)
         .collect();
@@ -102,14 +136,23 @@ pub(crate) fn split_long_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &
             new_faces.push((t2 as usize, [b, w, d], [w, a, d]));
         }
         // A split cannot fold the planar mesh (the new point is on the edge, or on the
-        // boundary track beyond it), and its faces follow the surface better than the face
-        // they replace, however they turn: only the planar orientation and a 3-D area are
-        // required.
-        let ok = new_faces.iter().all(|&(_, f, g)| {
+        // boundary track beyond it). Where the map is not resolved at the edge's scale (the
+        // lift of the planar midpoint far from the chord's midpoint, or a new face turned
+        // away from the face it splits) the edge crosses a fold of the surface that the
+        // remesh cannot follow: it is left alone.
+        let (xa, xb) = (mesh.position[a as usize], mesh.position[b as usize]);
+        let chord_mid = [0.5 * (xa[0] + xb[0]), 0.5 * (xa[1] + xb[1]), 0.5 * (xa[2] + xb[2])];
+        if norm(sub(x, chord_mid)) > MAX_LIFT_OFFSET * norm(sub(xa, xb)) {
+            continue;
+        }
+        let ok = new_faces.iter().all(|&(t, f, g)| {
+            let old = mesh.faces[t].map(|v| mesh.position[v as usize]);
+            let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
             [f, g].iter().all(|h| {
                 let p = h.map(|v| if v == w { q } else { mesh.plane[v as usize] });
                 let y = h.map(|v| if v == w { x } else { mesh.position[v as usize] });
-                mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && norm(cross(sub(y[1], y[0]), sub(y[2], y[0]))) > 0.0
+                let n1 = cross(sub(y[1], y[0]), sub(y[2], y[0]));
+                mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && norm(n1) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1)
             })
         });
         if new_faces.is_empty() || !ok {
@@ -134,9 +177,10 @@ pub(crate) fn split_long_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &
 /// keep their slots with no face (see [`compact`]). Returns the number of collapses.
 pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, lift: &SurfaceLift, min_len: f64, max_len: f64) -> usize {
     let edges = edge_faces(&mesh.faces);
+    let scale = mean_scale(mesh);
     let mut short: Vec<(f64, (u32, u32), [u32; 2])> = edges
         .iter()
-        .filter(|(_, t)| t[0] != u32::MAX && t[1] != u32::MAX)
+        .filter(|(&(a, b), t)| t[0] != u32::MAX && t[1] != u32::MAX && mesh.planar(a) && mesh.planar(b) && resolved(mesh, scale, a, b))
         .map(|(&(a, b), &t)| (length(mesh, a, b), (a, b), t))
         .filter(|&(l, _, _)| l < min_len)
         .collect();

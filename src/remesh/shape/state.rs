@@ -3,7 +3,7 @@
 //! planar point through the inverse map (paper Sec. 4.2), so it lies exactly on the input.
 
 use crate::mesh::fasthash::FastMap;
-use crate::mesh::geometry::{signed_area_2d, triangle_angles};
+use crate::mesh::geometry::{cross, dot, norm, signed_area_2d, sub};
 use crate::mesh::TriMesh;
 use crate::remesh::locate::Locator;
 
@@ -163,6 +163,43 @@ pub(crate) fn third(face: [u32; 3], a: u32, b: u32) -> Option<u32> {
 
 /// The smallest angle (radians) of the triangle `(a, b, c)`.
 pub(crate) fn smallest_angle(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    let t = triangle_angles(a, b, c);
-    t[0].min(t[1]).min(t[2])
+    // The smallest angle is opposite the shortest edge: one atan2 instead of three (this
+    // is the shape stage's innermost test).
+    let (ab, bc, ca) = (sub(b, a), sub(c, b), sub(a, c));
+    let (lab, lbc, lca) = (dot(ab, ab), dot(bc, bc), dot(ca, ca));
+    let (u, v) = if lab <= lbc && lab <= lca {
+        (ca, bc) // opposite c: the edges c->a and c->b
+    } else if lbc <= lca {
+        (ab, ca) // opposite a
+    } else {
+        (bc, ab) // opposite b
+    };
+    // u and v point into and out of the opposite vertex; the angle between -u and v.
+    norm(cross(u, v)).atan2(-dot(u, v))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::smallest_angle;
+    use crate::mesh::geometry::triangle_angles;
+
+    /// The one-atan2 shortcut equals the smallest of the three angles computed in full.
+    #[test]
+    fn smallest_angle_is_the_least_of_the_three() {
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for _ in 0..1000 {
+            let [a, b, c] = [[next(), next(), next()], [next(), next(), next()], [next(), next(), next()]];
+            let t = triangle_angles(a, b, c);
+            let want = t[0].min(t[1]).min(t[2]);
+            assert!((smallest_angle(a, b, c) - want).abs() < 1e-12, "{a:?} {b:?} {c:?}");
+        }
+        // An obtuse triangle: the smallest angle is still opposite the shortest edge.
+        let got = smallest_angle([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [-0.2, 0.05, 0.0]);
+        let t = triangle_angles([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [-0.2, 0.05, 0.0]);
+        assert!((got - t[0].min(t[1]).min(t[2])).abs() < 1e-12);
+    }
 }
