@@ -13,12 +13,16 @@ pub const NO_VALUE: [u8; 3] = [170, 170, 170];
 /// Share of faces whose `|d_area|` is within the colour range; the rest saturate.
 pub const RANGE_QUANTILE: f64 = 0.98;
 
-/// The colour of `t` in `[-1, 1]` (clamped): blue, white, red.
+/// Colour steps on each side of zero.
+pub const STEPS: f64 = 8.0;
+
+/// The colour of `t` in `[-1, 1]` (clamped): blue, white, red, in [`STEPS`] steps each side.
 pub fn diverging(t: f64) -> [u8; 3] {
     let t = if t.is_finite() { t.clamp(-1.0, 1.0) } else { return NO_VALUE };
     let (cold, hot) = ([33.0, 102.0, 172.0], [178.0, 24.0, 43.0]);
     let end: [f64; 3] = if t < 0.0 { cold } else { hot };
-    let s = t.abs();
+    // In steps of 1 / STEPS: a colour reads as a value off the bar.
+    let s = (t.abs() * STEPS).round() / STEPS;
     [0, 1, 2].map(|k| (255.0 + s * (end[k] - 255.0)).round() as u8)
 }
 
@@ -43,12 +47,13 @@ pub fn with_colour_bar(image: &RgbImage, range: f64, label: &str, figure: &str) 
     let mut out = RgbImage::filled(image.width + BAR_STRIP, image.height, [255, 255, 255]);
     out.paste(image, 0, 0);
     let (x0, bar_w) = (image.width + 14, 18u32);
-    let (top, bottom) = (40u32, image.height.saturating_sub(20));
+    let (top, bottom) = (50u32, image.height.saturating_sub(14));
     if bottom <= top + 10 {
         return Err(FigureError::Empty { figure: figure.to_string(), why: format!("the image ({} px high) is too small for a colour bar", image.height) });
     }
     for y in top..bottom {
         let t = 1.0 - 2.0 * f64::from(y - top) / f64::from(bottom - 1 - top);
+        let t = (t * STEPS).round() / STEPS;
         let c = diverging(t);
         for x in x0..x0 + bar_w {
             let at = 3 * (y * out.width + x) as usize;
@@ -57,7 +62,7 @@ pub fn with_colour_bar(image: &RgbImage, range: f64, label: &str, figure: &str) 
     }
     let tx = (x0 + bar_w + 6) as i32;
     let labels = [
-        Label::new(label, (x0 as i32 - 4, 12), 15, Anchor::TopLeft),
+        Label::new(label, (x0 as i32 - 4, 24), 15, Anchor::TopLeft),
         Label::new(&format!("{range:+.3}"), (tx, top as i32), 13, Anchor::MiddleLeft),
         Label::new("0", (tx, ((top + bottom) / 2) as i32), 13, Anchor::MiddleLeft),
         Label::new(&format!("{:+.3}", -range), (tx, bottom as i32 - 1), 13, Anchor::MiddleLeft),

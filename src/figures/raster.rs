@@ -40,6 +40,9 @@ const SUPERSAMPLE: u32 = 2;
 /// Share of the light that does not depend on the face's orientation.
 const AMBIENT: f64 = 0.3;
 
+/// Shading steps between black and full light.
+const SHADES: f64 = 24.0;
+
 /// What to draw: positions, faces, one colour per face, and whether to outline the faces.
 pub struct Scene<'a> {
     /// Vertex positions.
@@ -103,7 +106,9 @@ pub fn render(scene: &Scene<'_>, view: &View, frame: &Frame, size: u32) -> RgbIm
         if !(len > 0.0) {
             continue;
         }
-        let shade = AMBIENT + (1.0 - AMBIENT) * (dot(normal, light) / len).abs();
+        // In steps of 1 / SHADES: smooth enough to read the shape, and fewer distinct colours
+        // keep the PNG small.
+        let shade = ((AMBIENT + (1.0 - AMBIENT) * (dot(normal, light) / len).abs()) * SHADES).round() / SHADES;
         let base = (scene.colours)(f).map(|c| f64::from(c) * shade);
         let q = p.map(project);
         let area2 = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]);

@@ -6,8 +6,8 @@ use super::raster::{render, Frame, Scene, BACKGROUND, VIEWS};
 use super::text::{draw_texts, Anchor, Label};
 use super::FigureError;
 
-/// Height of the title strip over the views.
-pub const HEADER: u32 = 30;
+/// Height of the strip over the views: the title, then the views' names.
+pub const HEADER: u32 = 44;
 
 /// The three views of `scene`, each `size` pixels square, under `title`: an image of
 /// `3 * size` x `size + HEADER` pixels.
@@ -20,10 +20,8 @@ pub fn three_views(scene: &Scene<'_>, title: &str, size: u32, figure: &str) -> R
     let mut labels = vec![Label::new(title, (8, 7), 16, Anchor::TopLeft)];
     for (i, view) in VIEWS.iter().enumerate() {
         out.paste(&render(scene, view, &frame, size), i as u32 * size, HEADER);
-        labels.push(Label::new(view.name, ((i as u32 * size + size / 2) as i32, HEADER as i32 + 2), 13, Anchor::TopCentre));
+        labels.push(Label::new(view.name, ((i as u32 * size + size / 2) as i32, 27), 13, Anchor::TopCentre));
     }
-    // The view names sit right of the title's line only when there is room: keep them in
-    // the views' top margin.
     draw_texts(&mut out, &labels, figure)?;
     Ok(out)
 }
