@@ -181,3 +181,14 @@ fn cli_figure_directory_that_is_a_file_is_a_clear_error() {
     assert!(err.contains("figures: cannot write") && err.contains("taken"), "{err}");
     assert_eq!(std::fs::read(&blocker).unwrap(), b"not a directory");
 }
+
+#[test]
+fn sizes_out_of_range_are_errors_that_say_the_range() {
+    let m = mesh("open_meg_helmet_babysquid_mne.obj.gz");
+    let map = parameterize(&m, &ParamOptions::default(), &NoProgress).unwrap();
+    let dir = TempDir::new("figures-sizes");
+    let err = param_figures(&dir, "helmet", &m, &map, &FigureOptions::default().with_chart_size(100, 50)).unwrap_err();
+    assert!(err.to_string().contains("area_distortion.png") && err.to_string().contains("160 x 120 to 8192 x 8192"), "{err}");
+    let err = param_figures(&dir, "helmet", &m, &map, &FigureOptions::default().with_view_size(8)).unwrap_err();
+    assert!(err.to_string().contains("input.png") && err.to_string().contains("16 to 4096"), "{err}");
+}

@@ -55,9 +55,10 @@ pub const DEFAULT_BINS: usize = 50;
 #[derive(Debug, Clone, PartialEq)]
 pub struct FigureOptions {
     /// Side of one of the three shaded views in pixels (default [`DEFAULT_VIEW_SIZE`], 300;
-    /// at least 16): a rendering is `3 * view_size` wide.
+    /// 16 to 4096): a rendering is `3 * view_size` wide.
     pub view_size: u32,
-    /// Width and height of a chart in pixels (default [`DEFAULT_CHART_SIZE`], 640 x 420).
+    /// Width and height of a chart in pixels (default [`DEFAULT_CHART_SIZE`], 640 x 420;
+    /// 160 x 120 to 8192 x 8192).
     pub chart_size: (u32, u32),
     /// Bins of every histogram (default [`DEFAULT_BINS`], 50).
     pub bins: usize,

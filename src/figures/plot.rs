@@ -18,8 +18,8 @@ pub trait Chart {
 /// the files written.
 pub fn write_chart<C: Chart>(chart: &C, dir: &Path, stem: &str, size: (u32, u32), svg: bool) -> Result<(PathBuf, Option<PathBuf>), FigureError> {
     font::ensure()?;
-    if size.0 < 160 || size.1 < 120 {
-        return Err(FigureError::Empty { figure: format!("{stem}.png"), why: format!("a chart of {} x {} px is too small (160 x 120 at least)", size.0, size.1) });
+    if !(160..=8192).contains(&size.0) || !(120..=8192).contains(&size.1) {
+        return Err(FigureError::Empty { figure: format!("{stem}.png"), why: format!("a chart of {} x {} px: choose 160 x 120 to 8192 x 8192 px", size.0, size.1) });
     }
     let png_path = dir.join(format!("{stem}.png"));
     let name = format!("{stem}.png");
