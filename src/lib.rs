@@ -35,6 +35,8 @@ pub mod error;
 #[cfg(feature = "capi")]
 pub mod ffi;
 pub mod flatten;
+#[cfg(feature = "figures")]
+pub mod figures;
 pub mod harmonics;
 pub mod io;
 pub mod linalg;

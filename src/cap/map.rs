@@ -13,6 +13,14 @@ pub struct CapMap {
     /// Input faces of the punctured quad of a closed surface: they map to the cap's flat
     /// bottom (their corners on the rim `Z = Z*`). Empty for open surfaces.
     pub bottom_faces: Vec<usize>,
+    /// Area distortion `d_area` of each input face (paper Sec. 4.1): the values whose
+    /// statistics are [`ParamReport::area_distortion`], in face order; `NaN` for the faces
+    /// not measured (the punctured quad's, which go to the cap's flat bottom, and faces that
+    /// welding made degenerate).
+    pub face_area_distortion: Vec<f64>,
+    /// Angle distortion `d_angle` of each input corner (three per face, radians): the values
+    /// of [`ParamReport::angle_distortion`]; `NaN` for the corners of faces not measured.
+    pub corner_angle_distortion: Vec<f64>,
     /// The kind of surface mapped (as in [`ParamReport::kind`]).
     pub kind: SurfaceKind,
     /// What was measured.

@@ -89,6 +89,8 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
     let cap_work = to_cap(&plane);
     let flipped_faces = folded_faces(&plane, &faces).len();
     let spherical = options.domain != Domain::Disk;
+    let d_area = area_distortion(&work.vertices, &cap_work, &faces);
+    let d_angle = angle_distortion(&work.vertices, &cap_work, &faces);
     let report = ParamReport {
         domain: options.domain,
         kind,
@@ -97,8 +99,8 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         welded_vertices: welded.merged_vertices,
         r_star: spherical.then_some(radius),
         z_star: spherical.then(|| z_star_of_radius(radius)),
-        area_distortion: Stats::of(area_distortion(&work.vertices, &cap_work, &faces)),
-        angle_distortion: Stats::of(angle_distortion(&work.vertices, &cap_work, &faces)),
+        area_distortion: Stats::of(d_area.iter().copied()),
+        angle_distortion: Stats::of(d_angle.iter().copied()),
         conformal_energy: conformal_energy(&work.vertices, &plane, &faces),
         flipped_faces,
         untangle: untangle_report,
@@ -136,5 +138,42 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         }
         None => Vec::new(),
     };
-    Ok(CapMap { plane: plane_all, cap: cap_all, bottom_faces, kind: report.kind, report })
+    let input_faces = measured_input_faces(mesh, &welded.old_to_new, report.puncture.as_ref().map(|p| p.faces));
+    let (face_area_distortion, corner_angle_distortion) = per_input_face(mesh.n_faces(), &input_faces, &d_area, &d_angle);
+    Ok(CapMap { plane: plane_all, cap: cap_all, bottom_faces, face_area_distortion, corner_angle_distortion, kind: report.kind, report })
+}
+
+/// The input face of each measured face, in order: welding keeps the input's face order and
+/// drops the faces it makes degenerate ([`repair::weld_coincident`]); a closed surface's
+/// flattening then drops the two faces of the punctured quad (`punctured`, indices in the
+/// welded mesh) and keeps the order of the others.
+fn measured_input_faces(mesh: &TriMesh, old_to_new: &[u32], punctured: Option<[usize; 2]>) -> Vec<usize> {
+    let mut out = Vec::with_capacity(mesh.n_faces());
+    let mut welded_face = 0usize;
+    for (f, face) in mesh.faces.iter().enumerate() {
+        let [a, b, c] = face.map(|v| old_to_new.get(v as usize).copied().unwrap_or(repair::REMOVED));
+        if a == repair::REMOVED || b == repair::REMOVED || c == repair::REMOVED || a == b || b == c || a == c {
+            continue;
+        }
+        if !punctured.is_some_and(|p| p.contains(&welded_face)) {
+            out.push(f);
+        }
+        welded_face += 1;
+    }
+    out
+}
+
+/// The measured faces' `d_area` and corners' `d_angle` put at their input faces (`NaN`
+/// elsewhere). When the faces do not line up (they always do; a guard against a change of
+/// the welding or the puncture) every value is `NaN` rather than a wrong one.
+fn per_input_face(n_faces: usize, input_faces: &[usize], d_area: &[f64], d_angle: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let mut area = vec![f64::NAN; n_faces];
+    let mut angle = vec![f64::NAN; 3 * n_faces];
+    if input_faces.len() == d_area.len() && 3 * d_area.len() == d_angle.len() {
+        for (k, &f) in input_faces.iter().enumerate() {
+            area[f] = d_area[k];
+            angle[3 * f..3 * f + 3].copy_from_slice(&d_angle[3 * k..3 * k + 3]);
+        }
+    }
+    (area, angle)
 }

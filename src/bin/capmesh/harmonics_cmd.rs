@@ -18,6 +18,7 @@ pub struct HarmonicsArgs {
     pub report: Option<PathBuf>,
     pub cap_mesh: Option<PathBuf>,
     pub domain: Domain,
+    pub figures: Option<PathBuf>,
     pub quiet: bool,
 }
 
@@ -124,6 +125,10 @@ pub fn run(args: HarmonicsArgs) -> Result<(), String> {
         "order-1 aspect ratio sigma1/sigma3 {:.4} (exact order-1 ellipsoid {:.4})",
         report.aspect_ratio, report.ellipsoid_aspect_ratio
     );
+    if let Some(dir) = &args.figures {
+        let output = HarmonicsOutput { reconstructed, fit, report };
+        crate::figures_arg::done(capmesh::figures::harmonics_figures(dir, &display_name(input), &mesh, &map, &output, &Default::default()))?;
+    }
     Ok(())
 }
 

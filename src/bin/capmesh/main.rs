@@ -11,6 +11,7 @@ macro_rules! outln {
 }
 
 mod cli_progress;
+mod figures_arg;
 mod harmonics_cmd;
 mod map_args;
 mod shape_cmd;
@@ -62,6 +63,9 @@ enum Command {
         /// Write a JSON report here.
         #[arg(long)]
         report: Option<PathBuf>,
+        /// Write figures (PNG, SVG) and an index.md linking them into this directory.
+        #[arg(long, value_name = "DIR")]
+        figures: Option<PathBuf>,
         #[command(flatten)]
         map: map_args::MapArgs,
     },
@@ -114,6 +118,9 @@ enum Command {
         /// collapses in the shape stage (they are on by default and give better angles).
         #[arg(long)]
         no_resample: bool,
+        /// Write figures (PNG, SVG) and an index.md linking them into this directory.
+        #[arg(long, value_name = "DIR")]
+        figures: Option<PathBuf>,
         #[command(flatten)]
         map: map_args::MapArgs,
     },
@@ -142,6 +149,9 @@ enum Command {
         /// Domain: adaptive (default), hemisphere, sphere or radius=R.
         #[arg(long, default_value = "adaptive")]
         domain: Domain,
+        /// Write figures (PNG, SVG) and an index.md linking them into this directory.
+        #[arg(long, value_name = "DIR")]
+        figures: Option<PathBuf>,
     },
     /// Shape analysis of many meshes in parallel: Z* and the order-1 (N = 1) aspect ratio
     /// sigma1/sigma3 of each, one CSV row per mesh. Failed meshes get a 'failed' row; the
@@ -273,11 +283,11 @@ fn print_quality(q: &capmesh::metrics::RemeshMetrics) -> Result<(), String> {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain } => {
-            harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, quiet: cli.quiet })
+        Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain, figures } => {
+            harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, figures, quiet: cli.quiet })
         }
         Command::Shape { inputs, csv, jobs, domain } => shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, quiet: cli.quiet }),
-        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, map } => {
+        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, figures, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -357,6 +367,9 @@ fn run(cli: Cli) -> Result<(), String> {
                     },
                 )?;
             }
+            if let Some(dir) = figures {
+                figures_arg::done(capmesh::figures::remesh_figures(&dir, &figures_arg::name(&input), &m, &out, &rep, &Default::default()))?;
+            }
             Ok(())
         }
         Command::Metrics { original, remeshed, json } => {
@@ -397,7 +410,7 @@ fn run(cli: Cli) -> Result<(), String> {
             }
             Ok(())
         }
-        Command::Param { input, output, domain, report, map } => {
+        Command::Param { input, output, domain, report, figures, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -424,6 +437,9 @@ fn run(cli: Cli) -> Result<(), String> {
             warn_if_poor(&input, r);
             if let Some(path) = report {
                 write_json(&path, r)?;
+            }
+            if let Some(dir) = figures {
+                figures_arg::done(capmesh::figures::param_figures(&dir, &figures_arg::name(&input), &m, &map, &Default::default()))?;
             }
             Ok(())
         }
