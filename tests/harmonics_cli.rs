@@ -266,5 +266,5 @@ fn shape_succeeds_on_good_meshes_and_never_overwrites_an_input() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = std::fs::read_to_string(&csv).unwrap();
     assert_eq!(text.lines().count(), 2, "{text}");
-    assert!(text.lines().nth(1).unwrap().contains(",ok,2171,"), "{text}");
+    assert!(text.lines().nth(1).unwrap().contains(",ok,good,2171,"), "{text}");
 }
