@@ -58,9 +58,17 @@ impl AtomicFile {
         let name = target.file_name().ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "the path has no file name"))?;
         remove_stale_temporaries(dir);
         static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let temp_name = format!("{TEMP_MARKER}{}-{}.{}", std::process::id(), COUNTER.fetch_add(1, Ordering::Relaxed), name.to_string_lossy());
-        let temp = dir.join(temp_name);
-        let file = OpenOptions::new().write(true).create_new(true).open(&temp)?;
+        // A name taken (by an earlier process that had this PID) is skipped.
+        let mut attempt = 0;
+        let (temp, file) = loop {
+            let temp_name = format!("{TEMP_MARKER}{}-{}.{}", std::process::id(), COUNTER.fetch_add(1, Ordering::Relaxed), name.to_string_lossy());
+            let temp = dir.join(temp_name);
+            match OpenOptions::new().write(true).create_new(true).open(&temp) {
+                Ok(file) => break (temp, file),
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists && attempt < 100 => attempt += 1,
+                Err(e) => return Err(e),
+            }
+        };
         Ok(AtomicFile {
             writer: BufWriter::with_capacity(1 << 20, file),
             staged: StagedFile { target, temp, armed: true },

@@ -130,6 +130,8 @@ pub fn run(args: ShapeArgs) -> Result<(), Failure> {
                 if interrupt::requested() || journal_failed() {
                     return None;
                 }
+                // The file as it is read (a file changed meanwhile runs again on --resume).
+                let id = Identity::full(file);
                 // Each mesh on one thread of its own: the fit's parallel QR rounds differently
                 // on another number of threads, and the rows must not depend on --jobs (a
                 // resumed run may use another).
@@ -143,7 +145,7 @@ pub fn run(args: ShapeArgs) -> Result<(), Failure> {
                 if result.is_err() && interrupt::requested() {
                     return None; // stopped, not failed: no row
                 }
-                let line = shape_csv::line(key, &result, &Identity::full(file));
+                let line = shape_csv::line(key, &result, &id);
                 if let Ok(mut j) = journal.lock() {
                     if j.error.is_none() {
                         if let Err(e) = j.file.write_all(format!("{line}\n").as_bytes()).and_then(|()| j.file.flush()) {
