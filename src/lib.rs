@@ -57,7 +57,7 @@ pub use error::{Error, Result};
 pub use harmonics::{analyze, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
 pub use io::{read_mesh, write_mesh, ReadError, WriteError};
 pub use mesh::TriMesh;
-pub use param::{parameterize, ParamOptions, ParamReport};
+pub use param::{parameterize, MapQuality, ParamOptions, ParamReport};
 pub use progress::{NoProgress, Progress, Stage};
 pub use remesh::shape::{ShapeOptions, ShapeReport};
 pub use remesh::{remesh, CapGrid, Optimize, RemeshOptions, RemeshReport};

@@ -139,27 +139,48 @@ fn truncated_file_is_refused_with_its_name() {
     assert!(err.contains("cut.ply") && err.contains("truncated"), "{err}");
 }
 
-/// A fold-free but poor map is not passed silently: the bunny's plain centroid map from the
-/// plain stretch-energy map (lambda = 1, no smoothing, no refinement) has mean |d_area| 1.8 and
-/// the CLI says so on stderr; the default map of the same mesh does not warn.
+/// A fold-free but poor map is never a silent success: the bunny's plain centroid map from the
+/// plain stretch-energy map (lambda = 1, no smoothing, no refinement) is far from area
+/// preserving; the CLI says so on stderr, the report says `quality: poor`, and the command
+/// exits 3 (0 with --allow-poor-map), the outputs written either way. The default map of the
+/// same mesh does not warn and is `good`.
 #[test]
-fn poor_maps_are_reported_on_stderr() {
+fn poor_maps_are_reported_and_exit_3() {
     let dir = TempDir::new("cli-poor_map");
     let input = data("closed_bunny_npm.obj.gz");
-    let poor = capmesh()
-        .args(["--quiet", "param"])
+    let poor_args = ["--lambda", "1", "--smoothing", "0", "--area-refinement", "0", "--puncture-end", "bottom"];
+    let report = dir.join("poor.json");
+    let poor = capmesh().args(["--quiet", "param"]).arg(&input).arg("-o").arg(dir.join("poor.obj")).arg("--report").arg(&report).args(poor_args).output().unwrap();
+    let err = String::from_utf8_lossy(&poor.stderr);
+    assert_eq!(poor.status.code(), Some(3), "{err}");
+    assert!(err.contains("warning") && err.contains("far from area preserving"), "{err}");
+    assert!(err.contains("poor map") && err.contains("--allow-poor-map"), "{err}");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["quality"], "poor");
+    assert!(dir.join("poor.obj").exists(), "the outputs of a poor map are written");
+    let allowed = capmesh().args(["--quiet", "param"]).arg(&input).arg("-o").arg(dir.join("poor.obj")).args(poor_args).arg("--allow-poor-map").output().unwrap();
+    assert!(allowed.status.success(), "{}", String::from_utf8_lossy(&allowed.stderr));
+    let remesh_report = dir.join("remesh.json");
+    let remeshed = capmesh()
+        .args(["--quiet", "remesh"])
         .arg(&input)
         .arg("-o")
-        .arg(dir.join("poor.obj"))
-        .args(["--lambda", "1", "--smoothing", "0", "--area-refinement", "0", "--puncture-end", "bottom"])
+        .arg(dir.join("remesh.obj"))
+        .args(["--faces", "1000", "--optimize", "none", "--report"])
+        .arg(&remesh_report)
+        .args(poor_args)
         .output()
         .unwrap();
-    assert!(poor.status.success());
-    let err = String::from_utf8_lossy(&poor.stderr);
-    assert!(err.contains("warning") && err.contains("far from area preserving"), "{err}");
-    let good = capmesh().args(["--quiet", "param"]).arg(&input).arg("-o").arg(dir.join("good.obj")).output().unwrap();
+    assert_eq!(remeshed.status.code(), Some(3), "{}", String::from_utf8_lossy(&remeshed.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&remesh_report).unwrap()).unwrap();
+    assert_eq!(json["quality"], "poor");
+
+    let report = dir.join("good.json");
+    let good = capmesh().args(["--quiet", "param"]).arg(&input).arg("-o").arg(dir.join("good.obj")).arg("--report").arg(&report).output().unwrap();
     assert!(good.status.success());
     assert!(!String::from_utf8_lossy(&good.stderr).contains("warning"), "{}", String::from_utf8_lossy(&good.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["quality"], "good");
 }
 
 /// The bundled bunny changed by `change`, written to `name` in `dir`.

@@ -2,7 +2,7 @@
 //! with the input's connectivity, coefficients that the library re-evaluates to the same surface,
 //! and a report whose error falls with the order; `shape` analyses a cohort in parallel, gives
 //! one CSV row per mesh (the paper's aspect ratio in `aspect_ratio`) and fails, after writing
-//! the CSV, naming the mesh that could not be analysed.
+//! the CSV, naming the mesh that could not be analysed; a poor map marks its row and exits 3.
 
 mod common;
 
@@ -266,5 +266,48 @@ fn shape_succeeds_on_good_meshes_and_never_overwrites_an_input() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = std::fs::read_to_string(&csv).unwrap();
     assert_eq!(text.lines().count(), 2, "{text}");
-    assert!(text.lines().nth(1).unwrap().contains(",ok,2171,"), "{text}");
+    assert!(text.lines().nth(1).unwrap().contains(",ok,good,2171,"), "{text}");
+}
+
+/// A poor map is never a silent success (issue 27): the bundled bunny stretched 300 times
+/// along x maps, after every lambda fallback, at a mean |d_area| near 3 (above the 0.3
+/// threshold). `shape` marks its row `poor` (the helmet's is `good`) and exits 3;
+/// `--allow-poor-map` exits 0 (the rows kept by `--resume` count too); `harmonics` exits 3
+/// with the report's `param.quality` `poor`, its outputs written.
+#[test]
+fn poor_maps_mark_the_shape_row_and_exit_3() {
+    let dir = TempDir::new("harmonics-cli-poor");
+    let cohort = dir.join("cohort");
+    std::fs::create_dir(&cohort).unwrap();
+    let mut bunny = capmesh::io::read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap();
+    bunny.vertices.iter_mut().for_each(|p| p[0] *= 300.0);
+    let stretched = cohort.join("bunny_x300.ply");
+    capmesh::io::write_mesh(&stretched, &bunny).unwrap();
+    std::fs::copy(data("open_meg_helmet_babysquid_mne.obj.gz"), cohort.join("helmet.obj.gz")).unwrap();
+
+    let csv = dir.join("shape.csv");
+    let out = capmesh().args(["shape", "--quiet"]).arg(&cohort).arg("--csv").arg(&csv).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(err.contains("1 of 2 meshes have a poor map") && err.contains("--allow-poor-map"), "{err}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header = csv_fields(lines.next().unwrap());
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let rows: Vec<Vec<String>> = lines.map(csv_fields).collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    let quality = |file: &str| rows.iter().find(|r| r[col("file")].ends_with(file)).map(|r| r[col("quality")].clone()).unwrap();
+    assert_eq!(quality("bunny_x300.ply"), "poor", "{text}");
+    assert_eq!(quality("helmet.obj.gz"), "good", "{text}");
+    let allowed = capmesh().args(["shape", "--quiet", "--resume", "--allow-poor-map"]).arg(&cohort).arg("--csv").arg(&csv).output().unwrap();
+    assert!(allowed.status.success(), "{}", String::from_utf8_lossy(&allowed.stderr));
+    let again = capmesh().args(["shape", "--quiet", "--resume"]).arg(&cohort).arg("--csv").arg(&csv).output().unwrap();
+    assert_eq!(again.status.code(), Some(3), "kept poor rows still count: {}", String::from_utf8_lossy(&again.stderr));
+
+    let report = dir.join("report.json");
+    let out = capmesh().args(["harmonics", "--quiet", "--order", "1"]).arg(&stretched).arg("-o").arg(dir.join("rec.ply")).arg("--report").arg(&report).output().unwrap();
+    assert_eq!(out.status.code(), Some(3), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["param"]["quality"], "poor");
+    assert!(dir.join("rec.ply").exists());
 }

@@ -57,7 +57,11 @@ pub fn write_png(image: &RgbImage, path: &Path) -> Result<(), FigureError> {
     write_file(path, &bytes)
 }
 
-/// Write `bytes` to `path`.
+/// Write `bytes` to `path` atomically ([`crate::io::atomic`]): a stopped run leaves the
+/// earlier figure or none, never a part of one.
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), FigureError> {
-    std::fs::write(path, bytes).map_err(|source| FigureError::Io { path: path.to_path_buf(), source })
+    let io = |source| FigureError::Io { path: path.to_path_buf(), source };
+    let mut file = crate::io::atomic::AtomicFile::create(path).map_err(io)?;
+    std::io::Write::write_all(&mut file, bytes).map_err(io)?;
+    file.commit().map_err(io)
 }

@@ -167,11 +167,7 @@ pub enum ReadError {
 #[non_exhaustive]
 pub enum WriteError {
     /// The file could not be created or written.
-    #[error(
-        "cannot write {}: {source}; check that the directory exists, is writable and has free \
-         space",
-        path.display()
-    )]
+    #[error("cannot write {}: {source}; {}", path.display(), write_hint(source))]
     Io {
         /// The file.
         path: PathBuf,
@@ -230,4 +226,25 @@ pub enum WriteError {
         /// Why, and what to use instead.
         message: String,
     },
+}
+
+/// What to do about an operating-system error while writing a file.
+fn write_hint(error: &std::io::Error) -> &'static str {
+    #[cfg(unix)]
+    if let Some(code) = error.raw_os_error() {
+        match code {
+            libc::ENOSPC => return "the disk is full: free space or write elsewhere; the earlier file of that name, if any, is untouched",
+            libc::EDQUOT => return "the disk quota is used up: free space or write elsewhere; the earlier file of that name, if any, is untouched",
+            libc::EFBIG => return "the file is larger than the limit on file size (ulimit -f) or the file system allows: raise the limit or write elsewhere",
+            libc::EISDIR => return "the path is a directory: give a file name (for example DIR/out.ply)",
+            libc::ENOTDIR => return "a part of the path is not a directory: check the path",
+            libc::EROFS => return "the file system is read-only: write elsewhere",
+            _ => {}
+        }
+    }
+    match error.kind() {
+        std::io::ErrorKind::NotFound => "the directory does not exist: create it first or check the path",
+        std::io::ErrorKind::PermissionDenied => "the directory or the file is not writable: change its permissions or write elsewhere",
+        _ => "check that the directory exists, is writable and has free space",
+    }
 }

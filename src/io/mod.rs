@@ -8,9 +8,11 @@
 //!
 //! Writers use a buffered writer and full `f64` precision (shortest round-tripping decimal in
 //! the text formats, `double` in PLY; STL stores 32-bit floats). They refuse meshes with
-//! out-of-range indices or non-finite coordinates. Use [`same_file`] to refuse overwriting an
-//! input file.
+//! out-of-range indices or non-finite coordinates, and write through [`atomic`]: the target
+//! holds its earlier content or the complete new file, never a part. Use [`same_file`] to
+//! refuse overwriting an input file.
 
+pub mod atomic;
 pub mod error;
 mod obj;
 mod off;
@@ -19,7 +21,6 @@ mod stl;
 mod text;
 
 use std::fmt;
-use std::fs::File;
 use std::io::{BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
@@ -180,18 +181,32 @@ fn parse(path: &Path, bytes: &[u8], format: Format) -> Result<TriMesh, ReadError
 
 /// Write a mesh; the format comes from the extension (PLY is binary little endian), gzip-
 /// compressed when the name ends in `.gz`.
-/// An existing file is replaced: check [`same_file`] against the inputs first.
+/// An existing file is replaced, atomically ([`atomic`]): check [`same_file`] against the
+/// inputs first.
 pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), WriteError> {
+    commit(path, stage_mesh(path, mesh)?)
+}
+
+/// [`write_mesh`] up to the last step: the complete file waits under a temporary name for
+/// [`atomic::StagedFile::commit`] (or [`atomic::commit_all`] with the other outputs of a run).
+pub fn stage_mesh(path: &Path, mesh: &TriMesh) -> Result<atomic::StagedFile, WriteError> {
     let format = Format::from_path(path).ok_or_else(|| WriteError::UnknownFormat {
         path: path.to_path_buf(),
         extension: extension_of(path),
     })?;
-    write_with(path, mesh, format, false)
+    stage_with(path, mesh, format, false)
 }
 
 /// Write ASCII PLY (whatever the extension; gzip-compressed when it ends in `.gz`).
 pub fn write_ply_ascii(path: &Path, mesh: &TriMesh) -> Result<(), WriteError> {
-    write_with(path, mesh, Format::Ply, true)
+    commit(path, stage_with(path, mesh, Format::Ply, true)?)
+}
+
+fn commit(path: &Path, staged: atomic::StagedFile) -> Result<(), WriteError> {
+    staged.commit().map_err(|source| WriteError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Encode a mesh in memory (PLY as binary little endian). Errors name the file `<bytes>`.
@@ -216,28 +231,20 @@ fn encode(w: &mut dyn Write, mesh: &TriMesh, format: Format, ascii: bool) -> std
     }
 }
 
-fn write_with(path: &Path, mesh: &TriMesh, format: Format, ascii: bool) -> Result<(), WriteError> {
+fn stage_with(path: &Path, mesh: &TriMesh, format: Format, ascii: bool) -> Result<atomic::StagedFile, WriteError> {
     check_writable(path, mesh, format)?;
-    let io_error = |source| WriteError::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let file = File::create(path).map_err(io_error)?;
-    let mut w = BufWriter::with_capacity(1 << 20, file);
-    if is_gzip(path) {
-        // Buffer in front of the encoder too: the writers make many small writes.
-        let gz = flate2::write::GzEncoder::new(w, flate2::Compression::fast());
-        let mut buffered = BufWriter::with_capacity(1 << 20, gz);
-        encode(&mut buffered, mesh, format, ascii).map_err(io_error)?;
-        let gz = buffered
-            .into_inner()
-            .map_err(|e| io_error(e.into_error()))?;
-        w = gz.finish().map_err(io_error)?;
-    } else {
-        encode(&mut w, mesh, format, ascii).map_err(io_error)?;
-    }
-    w.into_inner().map_err(|e| io_error(e.into_error()))?;
-    Ok(())
+    atomic::stage(path, |file| {
+        if is_gzip(path) {
+            // Buffer in front of the encoder: the writers make many small writes.
+            let gz = flate2::write::GzEncoder::new(file, flate2::Compression::fast());
+            let mut buffered = BufWriter::with_capacity(1 << 20, gz);
+            encode(&mut buffered, mesh, format, ascii)?;
+            buffered.into_inner().map_err(|e| e.into_error())?.finish()?;
+            Ok(())
+        } else {
+            encode(file, mesh, format, ascii)
+        }
+    })
 }
 
 /// Refuse meshes the file would misrepresent.

@@ -79,5 +79,13 @@ pub fn write(path: &Path, mesh: &TriMesh, options: &WriteOptions) -> Result<(), 
     }
     let positions: Vec<f64> = mesh.vertices.iter().flatten().copied().collect();
     let triangles: Vec<u32> = mesh.faces.iter().flatten().copied().collect();
-    bridge::ffi::write_mesh(utf8(path)?, &positions, &triangles, options.binary).map_err(|e| OpenMeshError::Write(e.what().to_string()))
+    utf8(path)?;
+    // Through a temporary next to `path` (it keeps the extension OpenMesh chooses the format
+    // by), renamed over `path` when complete: see `crate::io::atomic`.
+    let staged = crate::io::atomic::stage_path(path, |temp| {
+        let temp = temp.to_str().ok_or_else(|| std::io::Error::other("the temporary's path is not valid UTF-8"))?;
+        bridge::ffi::write_mesh(temp, &positions, &triangles, options.binary).map_err(|e| std::io::Error::other(e.what().to_string()))
+    })
+    .map_err(|e| OpenMeshError::Write(e.to_string()))?;
+    staged.commit().map_err(|e| OpenMeshError::Write(crate::io::WriteError::Io { path: path.to_path_buf(), source: e }.to_string()))
 }

@@ -3,7 +3,7 @@
 
 use super::options::ParamOptions;
 use super::prepare::Prepared;
-use super::report::ParamReport;
+use super::report::{MapQuality, ParamReport};
 use super::search::{search_radius, transport_density, Searched};
 use crate::cap::domain::Domain;
 use crate::cap::stereographic::{inverse_stereographic, z_star_of_radius};
@@ -91,6 +91,7 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
     let spherical = options.domain != Domain::Disk;
     let d_area = area_distortion(&work.vertices, &cap_work, &faces);
     let d_angle = angle_distortion(&work.vertices, &cap_work, &faces);
+    let area_stats = Stats::of(d_area.iter().copied());
     let report = ParamReport {
         domain: options.domain,
         kind,
@@ -99,7 +100,8 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         welded_vertices: welded.merged_vertices,
         r_star: spherical.then_some(radius),
         z_star: spherical.then(|| z_star_of_radius(radius)),
-        area_distortion: Stats::of(d_area.iter().copied()),
+        quality: MapQuality::of(options.domain, area_stats.mean_abs),
+        area_distortion: area_stats,
         angle_distortion: Stats::of(d_angle.iter().copied()),
         conformal_energy: conformal_energy(&work.vertices, &plane, &faces),
         flipped_faces,

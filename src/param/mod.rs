@@ -29,10 +29,9 @@ pub use options::{
     OpenInitialMap, ParamOptions, PunctureEnd, DEFAULT_AREA_REFINEMENT, DEFAULT_LAMBDA_FALLBACKS, DEFAULT_OPEN_FACTORED_ITERATIONS,
     DEFAULT_OPEN_LAMBDA, DEFAULT_SEARCH_SITES, MASS_TOLERANCE, TRANSPORT_TOLERANCE,
 };
-pub use report::{FlattenReport, LambdaFallback, ParamReport, PunctureTrial, RadiusSample};
+pub use report::{FlattenReport, LambdaFallback, MapQuality, ParamReport, PunctureTrial, RadiusSample};
 pub use search::{search_level_sites, MIN_SEARCH_SITES, SEARCH_RATIO, SMALL_SEARCH_RATIO};
 
-use crate::cap::Domain;
 use crate::error::Error;
 use crate::mesh::{SurfaceKind, TriMesh};
 use crate::progress::{self, Progress, Stage};
@@ -103,7 +102,7 @@ fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress:
 /// A map poor enough that a closed surface is mapped again with a larger `lambda`: mean
 /// `|d_area|` above [`POOR_MAP_AREA_DISTORTION`] on the adaptive cap.
 fn is_poor(map: &CapMap) -> bool {
-    map.report.domain == Domain::Adaptive && !(map.report.area_distortion.mean_abs <= POOR_MAP_AREA_DISTORTION)
+    map.report.quality == MapQuality::Poor
 }
 
 /// `map` with the attempts not kept, its wall time counted from `start` when there were any.

@@ -38,6 +38,49 @@ fn as_display<T: std::fmt::Display, S: serde::Serializer>(value: &T, serializer:
     serializer.collect_str(value)
 }
 
+/// Whether a map passed capmesh's own quality check (the command line exits with code 3 on a
+/// poor map unless `--allow-poor-map`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MapQuality {
+    /// On the adaptive cap, mean `|d_area|` at most [`super::POOR_MAP_AREA_DISTORTION`].
+    Good,
+    /// On the adaptive cap, mean `|d_area|` above [`super::POOR_MAP_AREA_DISTORTION`] or not
+    /// finite: fold-free but far from area preserving.
+    Poor,
+    /// A fixed domain (disk, hemisphere, sphere, radius=R): not rated, since those distort
+    /// area by design.
+    Unrated,
+}
+
+impl MapQuality {
+    /// The quality of a map onto `domain` with mean `|d_area|` `mean_abs_area_distortion`.
+    pub fn of(domain: Domain, mean_abs_area_distortion: f64) -> MapQuality {
+        if domain != Domain::Adaptive {
+            MapQuality::Unrated
+        } else if mean_abs_area_distortion <= super::POOR_MAP_AREA_DISTORTION {
+            MapQuality::Good
+        } else {
+            MapQuality::Poor
+        }
+    }
+
+    /// `"good"`, `"poor"` or `"unrated"`, as in the JSON reports and the shape CSV.
+    pub fn name(self) -> &'static str {
+        match self {
+            MapQuality::Good => "good",
+            MapQuality::Poor => "poor",
+            MapQuality::Unrated => "unrated",
+        }
+    }
+}
+
+impl std::fmt::Display for MapQuality {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Everything measured about one parameterization.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct ParamReport {
@@ -59,6 +102,9 @@ pub struct ParamReport {
     pub z_star: Option<f64>,
     /// Per-face area distortion statistics.
     pub area_distortion: Stats,
+    /// `poor` when the mean `|d_area|` on the adaptive cap is above
+    /// [`super::POOR_MAP_AREA_DISTORTION`] (see [`MapQuality`]).
+    pub quality: MapQuality,
     /// Per-corner angle distortion statistics (radians).
     pub angle_distortion: Stats,
     /// Area-normalised mean `|mu|^2` at the final radius.

@@ -1,7 +1,9 @@
 //! `capmesh harmonics`: adaptive harmonics representation of one mesh, written as the
 //! reconstructed surface, the coefficients (JSON) and a report of the error per order.
 
-use crate::{read, refuse_overwrite, write_json};
+use crate::failure::{self, Failure};
+use crate::outputs;
+use crate::{read, refuse_overwrite};
 use capmesh::cap::Domain;
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::harmonics::{analyze_map, basis_degree, HarmonicFit, HarmonicsOutput};
@@ -19,6 +21,7 @@ pub struct HarmonicsArgs {
     pub cap_mesh: Option<PathBuf>,
     pub domain: Domain,
     pub figures: Option<PathBuf>,
+    pub allow_poor_map: bool,
     pub quiet: bool,
 }
 
@@ -75,39 +78,42 @@ fn coefficients_file<'a>(fit: &HarmonicFit, source: &'a str) -> Result<Coefficie
 }
 
 /// Run `capmesh harmonics`.
-pub fn run(args: HarmonicsArgs) -> Result<(), String> {
+pub fn run(args: HarmonicsArgs) -> Result<(), Failure> {
     let input = &args.input;
     refuse_overwrite(input, &args.output)?;
     for extra in [&args.coefficients, &args.report, &args.cap_mesh].into_iter().flatten() {
         refuse_overwrite(input, extra)?;
     }
+    let targets: Vec<&Path> = [Some(&args.output), args.coefficients.as_ref(), args.report.as_ref(), args.cap_mesh.as_ref()].into_iter().flatten().map(|p| p.as_path()).collect();
+    outputs::refuse_duplicates(&targets)?;
     for mesh_out in [Some(&args.output), args.cap_mesh.as_ref()].into_iter().flatten() {
         if io::Format::from_path(mesh_out).is_none() {
-            return Err(format!(
+            return Err(Failure::Error(format!(
                 "{}: unknown mesh format; use .obj, .ply, .off or .stl (optionally .gz)",
                 mesh_out.display()
-            ));
+            )));
         }
     }
     let mesh = read(input)?;
-    let named = |e: capmesh::Error| format!("{}: {e}", input.display());
     let bar = crate::cli_progress::Bar::new(args.quiet);
+    let named = |e: capmesh::Error| failure::of_pipeline("harmonics", input, bar.stage(), e);
     let options = ParamOptions::default().with_domain(args.domain);
     // Cheap checks first (order, vertex count), then the parameterization, then the fit.
     capmesh::harmonics::pipeline::check_request(&mesh, args.order).map_err(|e| named(e.into()))?;
     let map = parameterize(&mesh, &options, &bar).map_err(named)?;
     let HarmonicsOutput { reconstructed, fit, report } = analyze_map(&mesh, &map, args.order, &bar).map_err(named)?;
     bar.finish();
-    io::write_mesh(&args.output, &reconstructed).map_err(|e| e.to_string())?;
+    let mut staged = vec![outputs::stage_mesh(&args.output, &reconstructed)?];
     if let Some(path) = &args.cap_mesh {
-        io::write_mesh(path, &map.cap_mesh(&mesh)).map_err(|e| e.to_string())?;
+        staged.push(outputs::stage_mesh(path, &map.cap_mesh(&mesh))?);
     }
     if let Some(path) = &args.coefficients {
-        write_json(path, &coefficients_file(&fit, &display_name(input))?)?;
+        staged.push(outputs::stage_json(path, &coefficients_file(&fit, &display_name(input))?)?);
     }
     if let Some(path) = &args.report {
-        write_json(path, &report)?;
+        staged.push(outputs::stage_json(path, &report)?);
     }
+    outputs::commit(staged, || format!("harmonics of {} stopped while writing", input.display()))?;
     outln!(
         "{}: {} on Z* = {:.4}, order {} ({} functions), {:.2} s",
         input.display(),
@@ -125,11 +131,13 @@ pub fn run(args: HarmonicsArgs) -> Result<(), String> {
         "order-1 aspect ratio sigma1/sigma3 {:.4} (exact order-1 ellipsoid {:.4})",
         report.aspect_ratio, report.ellipsoid_aspect_ratio
     );
+    crate::warn_if_poor(input, &report.param);
+    let verdict = crate::refuse_poor(input, &report.param, args.allow_poor_map);
     if let Some(dir) = &args.figures {
         let output = HarmonicsOutput { reconstructed, fit, report };
         crate::figures_arg::done(capmesh::figures::harmonics_figures(dir, &display_name(input), &mesh, &map, &output, &Default::default()))?;
     }
-    Ok(())
+    verdict
 }
 
 fn display_name(path: &Path) -> String {

@@ -11,10 +11,14 @@ macro_rules! outln {
 }
 
 mod cli_progress;
+mod failure;
 mod figures_arg;
 mod harmonics_cmd;
+mod interrupt;
 mod map_args;
+mod outputs;
 mod shape_cmd;
+mod shape_csv;
 
 use capmesh::cap::Domain;
 use capmesh::param::{parameterize, ParamOptions};
@@ -22,6 +26,7 @@ use capmesh::io;
 use capmesh::remesh::{remesh, CapGrid, RemeshOptions};
 use capmesh::mesh;
 use clap::{Parser, Subcommand};
+use failure::Failure;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -152,10 +157,14 @@ enum Command {
         /// Write figures (PNG, SVG) and an index.md linking them into this directory.
         #[arg(long, value_name = "DIR")]
         figures: Option<PathBuf>,
+        /// Exit 0 with a poor map (mean |d_area| above 0.3 on the adaptive cap) instead of 3.
+        #[arg(long)]
+        allow_poor_map: bool,
     },
     /// Shape analysis of many meshes in parallel: Z* and the order-1 (N = 1) aspect ratio
-    /// sigma1/sigma3 of each, one CSV row per mesh. Failed meshes get a 'failed' row; the
-    /// command then exits non-zero after writing the CSV.
+    /// sigma1/sigma3 of each, one CSV row per mesh, sorted by file. Failed meshes get a
+    /// 'failed' row; the command then exits 1 after writing the CSV (3 when rows are only
+    /// poor). Rows are appended to CSV.partial as meshes finish; --resume reuses them.
     Shape {
         /// Mesh files and/or directories (searched recursively for .obj, .ply, .off, .stl,
         /// optionally .gz).
@@ -170,6 +179,17 @@ enum Command {
         /// Domain: adaptive (default), hemisphere, sphere or radius=R.
         #[arg(long, default_value = "adaptive")]
         domain: Domain,
+        /// Keep the rows of an earlier run (the CSV and CSV.partial) whose file is unchanged:
+        /// same size and modification time (--resume), or same SHA-256 (--resume=hash); run
+        /// only the rest. Use the same options as the earlier run.
+        #[arg(long, num_args = 0..=1, require_equals = true, default_missing_value = "mtime")]
+        resume: Option<shape_csv::ResumeBy>,
+        /// With --resume: analyse the meshes of 'failed' rows again.
+        #[arg(long, requires = "resume")]
+        retry_failed: bool,
+        /// Exit 0 when rows are poor (quality column) instead of 3.
+        #[arg(long)]
+        allow_poor_map: bool,
     },
     /// Remeshing metrics of any remeshed surface against its original: d_face, surface
     /// distances (mean and one-sided Hausdorff), angles, valence, self-intersecting faces.
@@ -186,6 +206,14 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // Commands that write files stop cleanly on SIGINT and SIGTERM; `check` and `metrics`
+    // keep the default (they write nothing).
+    if matches!(cli.command, Command::Param { .. } | Command::Remesh { .. } | Command::Harmonics { .. } | Command::Shape { .. }) {
+        if let Err(e) = interrupt::install() {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    }
     if let Some(n) = cli.threads {
         if let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(usize::from(n)).build_global() {
             eprintln!("error: cannot start {n} worker threads: {e}");
@@ -198,10 +226,7 @@ fn main() -> ExitCode {
     // small meshes than the library's alone.
     match rayon::scope(|_| run(cli)) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            ExitCode::FAILURE
-        }
+        Err(failure) => failure.report(),
     }
 }
 
@@ -227,11 +252,6 @@ pub(crate) fn refuse_overwrite(input: &Path, output: &Path) -> Result<(), String
     Ok(())
 }
 
-pub(crate) fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<(), String> {
-    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
-    std::fs::write(path, text + "\n").map_err(|e| format!("cannot write report {}: {e}", path.display()))
-}
-
 /// Mean |d_area| above which the map is reported as poor on stderr (the bundled meshes map
 /// at 0.008-0.13; a failed fold repair gives 0.4 and more); closed surfaces are mapped again
 /// with a larger lambda above it first.
@@ -239,7 +259,7 @@ const POOR_AREA_DISTORTION: f64 = capmesh::param::POOR_MAP_AREA_DISTORTION;
 
 /// Say on stderr when a map is fold-free but far from area preserving, rather than let a poor
 /// result pass silently, and when a closed surface needed a larger `lambda` than asked.
-fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
+pub(crate) fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
     if let capmesh::param::FlattenReport::Closed(used) = &r.flatten {
         for tried in &r.lambda_fallbacks {
             eprintln!("warning: {}: not kept: lambda = {}: {}", input.display(), tried.lambda, tried.reason);
@@ -264,6 +284,19 @@ fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
     }
 }
 
+/// `Err(Failure::PoorMap)` for a poor map unless `allow` (`--allow-poor-map`).
+pub(crate) fn refuse_poor(input: &Path, r: &capmesh::ParamReport, allow: bool) -> Result<(), Failure> {
+    if r.quality == capmesh::MapQuality::Poor && !allow {
+        return Err(Failure::PoorMap(format!(
+            "{}: poor map (mean |d_area| = {:.3}, above {POOR_AREA_DISTORTION}; quality: poor in the report); \
+             the outputs are written; pass --allow-poor-map to accept it",
+            input.display(),
+            r.area_distortion.mean_abs
+        )));
+    }
+    Ok(())
+}
+
 fn print_quality(q: &capmesh::metrics::RemeshMetrics) -> Result<(), String> {
     outln!("faces                      {}", q.faces);
     outln!("d_face                     {:.6e}", q.d_face);
@@ -281,16 +314,28 @@ fn print_quality(q: &capmesh::metrics::RemeshMetrics) -> Result<(), String> {
     Ok(())
 }
 
-fn run(cli: Cli) -> Result<(), String> {
+fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain, figures } => {
-            harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, figures, quiet: cli.quiet })
+        Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain, figures, allow_poor_map } => harmonics_cmd::run(harmonics_cmd::HarmonicsArgs {
+            input,
+            order,
+            output,
+            coefficients,
+            report,
+            cap_mesh,
+            domain,
+            figures,
+            allow_poor_map,
+            quiet: cli.quiet,
+        }),
+        Command::Shape { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map } => {
+            shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, quiet: cli.quiet })
         }
-        Command::Shape { inputs, csv, jobs, domain } => shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, quiet: cli.quiet }),
         Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, figures, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
+                outputs::refuse_duplicates(&[&output, r])?;
             }
             let t_read = std::time::Instant::now();
             let m = read(&input)?;
@@ -300,10 +345,10 @@ fn run(cli: Cli) -> Result<(), String> {
             let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample);
             let mut options = RemeshOptions { grid, area_equalization, optimize, shape, ..Default::default() };
             map.apply(&mut options.param);
-            let (out, rep) = remesh(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
+            let (out, rep) = remesh(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
             bar.finish();
             let t_write = std::time::Instant::now();
-            io::write_mesh(&output, &out).map_err(|e| e.to_string())?;
+            let mut staged = vec![outputs::stage_mesh(&output, &out)?];
             let write_seconds = t_write.elapsed().as_secs_f64();
             outln!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
             warn_if_poor(&input, &rep.param);
@@ -335,13 +380,14 @@ fn run(cli: Cli) -> Result<(), String> {
                     equalize_seconds: f64,
                     metrics_seconds: f64,
                     write_seconds: f64,
+                    quality: capmesh::MapQuality,
                     optimize: capmesh::remesh::Optimize,
                     shape: capmesh::remesh::shape::ShapeReport,
                     area_equalization: capmesh::refine::area_refine::AreaRefineReport,
                     parameterization: &'a capmesh::ParamReport,
                 }
                 let q = &rep.quality;
-                write_json(
+                staged.push(outputs::stage_json(
                     &path,
                     &Flat {
                         faces: q.faces,
@@ -360,17 +406,19 @@ fn run(cli: Cli) -> Result<(), String> {
                         equalize_seconds: rep.equalize_seconds,
                         metrics_seconds: rep.metrics_seconds,
                         write_seconds,
+                        quality: rep.param.quality,
                         optimize: rep.optimize,
                         shape: rep.shape,
                         area_equalization: rep.area_equalization,
                         parameterization: &rep.param,
                     },
-                )?;
+                )?);
             }
+            outputs::commit(staged, || format!("remesh of {} stopped while writing", input.display()))?;
             if let Some(dir) = figures {
                 figures_arg::done(capmesh::figures::remesh_figures(&dir, &figures_arg::name(&input), &m, &out, &rep, &Default::default()))?;
             }
-            Ok(())
+            refuse_poor(&input, &rep.param, map.allow_poor_map)
         }
         Command::Metrics { original, remeshed, json } => {
             let (a, b) = (read(&original)?, read(&remeshed)?);
@@ -414,15 +462,16 @@ fn run(cli: Cli) -> Result<(), String> {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
+                outputs::refuse_duplicates(&[&output, r])?;
             }
             let m = read(&input)?;
             let bar = cli_progress::Bar::new(cli.quiet);
             let mut options = ParamOptions::default().with_domain(domain);
             map.apply(&mut options);
-            let map = parameterize(&m, &options, &bar).map_err(|e| format!("{}: {e}", input.display()))?;
+            let cap = parameterize(&m, &options, &bar).map_err(|e| failure::of_pipeline("param", &input, bar.stage(), e))?;
             bar.finish();
-            io::write_mesh(&output, &map.cap_mesh(&m)).map_err(|e| e.to_string())?;
-            let r = &map.report;
+            let mut staged = vec![outputs::stage_mesh(&output, &cap.cap_mesh(&m))?];
+            let r = &cap.report;
             outln!(
                 "{}: {} onto {}: Z* = {}, mean |d_area| = {:.4}, mean |d_angle| = {:.4} rad, flipped faces = {}, {:.2} s",
                 input.display(),
@@ -436,12 +485,13 @@ fn run(cli: Cli) -> Result<(), String> {
             );
             warn_if_poor(&input, r);
             if let Some(path) = report {
-                write_json(&path, r)?;
+                staged.push(outputs::stage_json(&path, r)?);
             }
+            outputs::commit(staged, || format!("param of {} stopped while writing", input.display()))?;
             if let Some(dir) = figures {
-                figures_arg::done(capmesh::figures::param_figures(&dir, &figures_arg::name(&input), &m, &map, &Default::default()))?;
+                figures_arg::done(capmesh::figures::param_figures(&dir, &figures_arg::name(&input), &m, &cap, &Default::default()))?;
             }
-            Ok(())
+            refuse_poor(&input, r, map.allow_poor_map)
         }
     }
 }

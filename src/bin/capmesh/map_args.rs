@@ -41,10 +41,15 @@ pub struct MapArgs {
     /// r* only (0: search at full resolution, the paper's method).
     #[arg(long, default_value_t = capmesh::param::DEFAULT_SEARCH_SITES)]
     pub search_sites: usize,
+    /// Exit 0 with a poor map (mean |d_area| above 0.3 on the adaptive cap; the report's
+    /// quality is "poor") instead of 3. The outputs are written either way.
+    #[arg(long)]
+    pub allow_poor_map: bool,
 }
 
 impl MapArgs {
-    /// Set these options on `options` (its domain is left as it is).
+    /// Set these options on `options` (its domain is left as it is; `allow_poor_map` is the
+    /// command's, not the library's).
     pub fn apply(&self, options: &mut ParamOptions) {
         options.open_initial = self.initial;
         options.closed.lambda = self.lambda;
