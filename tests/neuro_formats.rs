@@ -200,3 +200,20 @@ fn freesurfer_round_trip() {
         assert_eq!(back.faces, mesh.faces);
     }
 }
+
+#[test]
+fn column_major_big_endian_base64_and_labels() {
+    // The fuzz seed: a label array with its table, and a 4 x 2 FLOAT32 array stored
+    // column-major, big endian, Base64Binary (nibabel reads rows [1, 0.5], [2, 0.75], ...).
+    let bytes = include_bytes!("../fuzz/seeds/labels.label.gii");
+    let attributes = capmesh::io::read_vertex_attributes_from_bytes(bytes, capmesh::io::AttributeFormat::Gifti).unwrap();
+    assert_eq!(attributes.len(), 3);
+    assert_eq!(attributes[0].name, "parcels");
+    assert_eq!(attributes[0].data, AttributeData::Label(vec![0, 7, 7, 0]));
+    assert_eq!(attributes[0].label_table, vec![(0, "unknown".to_string()), (7, "cortex".to_string())]);
+    assert_eq!(attributes[1].name, "shape 1[0]");
+    assert_eq!(attributes[1].data, AttributeData::Scalar(vec![1.0, 2.0, 3.0, 4.0]));
+    assert_eq!(attributes[2].name, "shape 1[1]");
+    assert_eq!(attributes[2].data, AttributeData::Scalar(vec![0.5, 0.75, 0.875, 1.125]));
+    assert!(attributes[1].label_table.is_empty());
+}

@@ -71,10 +71,10 @@ impl AttributeFormat {
     /// From the first bytes: XML is GIFTI, the curvature magic bytes or the old format's exact
     /// size are FreeSurfer.
     pub fn from_content(bytes: &[u8]) -> Option<AttributeFormat> {
-        if bytes.starts_with(&freesurfer::CURV_MAGIC) || freesurfer::is_old_curv(bytes) {
-            Some(AttributeFormat::FreeSurferCurv)
-        } else if super::looks_like_xml(bytes) {
+        if super::looks_like_xml(bytes) {
             Some(AttributeFormat::Gifti)
+        } else if bytes.starts_with(&freesurfer::CURV_MAGIC) || freesurfer::is_old_curv(bytes) {
+            Some(AttributeFormat::FreeSurferCurv)
         } else {
             None
         }

@@ -43,7 +43,7 @@ enum Command {
     /// Check a mesh: counts, boundary loops, components, Euler characteristic, and whether it
     /// is an open disk or a closed genus-0 surface. Exits non-zero otherwise.
     Check {
-        /// Mesh file (.obj, .ply, .off, .stl, optionally .gz).
+        /// Mesh file (.obj, .ply, .off, .stl, .gii, FreeSurfer lh.pial, optionally .gz).
         input: PathBuf,
         /// Print the summary as JSON.
         #[arg(long)]
@@ -147,8 +147,8 @@ enum Command {
     /// sigma1/sigma3 of each, one CSV row per mesh. Failed meshes get a 'failed' row; the
     /// command then exits non-zero after writing the CSV.
     Shape {
-        /// Mesh files and/or directories (searched recursively for .obj, .ply, .off, .stl,
-        /// optionally .gz).
+        /// Mesh files and/or directories (searched recursively for .obj, .ply, .off, .stl, .gii,
+        /// FreeSurfer surface names such as lh.pial, optionally .gz).
         #[arg(required = true)]
         inputs: Vec<PathBuf>,
         /// Output CSV file.

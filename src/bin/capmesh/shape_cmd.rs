@@ -39,7 +39,7 @@ struct Row {
 pub fn run(args: ShapeArgs) -> Result<(), String> {
     let files = collect(&args.inputs)?;
     if files.is_empty() {
-        return Err("no mesh files (.obj, .ply, .off, .stl, optionally .gz) in the given paths".into());
+        return Err("no mesh files (.obj, .ply, .off, .stl, .gii, lh.pial, ..., optionally .gz) in the given paths".into());
     }
     for f in &files {
         if capmesh::io::same_file(f, &args.csv) {
