@@ -108,6 +108,12 @@ fn gifti_errors_name_the_line_and_what_to_do() {
     message(&err, &["external file (ExternalFileBinary)"]);
     let err = read_gifti(&gifti(&P.replace("ASCII", "Base32"), XYZ, T, "0 1 2")).unwrap_err();
     message(&err, &["encoding 'Base32'"]);
+    // Binary data need a byte order; ASCII data ignore it.
+    let err = read_gifti(&gifti(&P.replace("ASCII", "Base64Binary"), "AAAA", T, "0 1 2")).unwrap_err();
+    message(&err, &["line 4", "no byte order ('Endian') for binary data"]);
+    let err = read_gifti(&gifti(&P.replace("ASCII\"", "Base64Binary\" Endian=\"Middle\""), "AAAA", T, "0 1 2")).unwrap_err();
+    message(&err, &["byte order 'Middle'"]);
+    assert!(read_gifti(&gifti(&format!("{P} Endian=\"Middle\""), XYZ, T, "0 1 2")).is_ok());
     // Not GIFTI, not UTF-8, no surface.
     let err = read_gifti("<?xml version=\"1.0\"?>\n<svg></svg>\n").unwrap_err();
     message(&err, &["line 2", "<svg>, not <GIFTI>"]);

@@ -201,15 +201,14 @@ impl<'a, 'input> Array<'a, 'input> {
                 return Err(unsupported(format!("encoding '{}'", show(other.as_bytes()))))
             }
         };
-        let big_endian = match node.attribute("Endian").map(str::trim) {
-            Some("BigEndian" | "GIFTI_ENDIAN_BIG") => true,
-            Some("LittleEndian" | "GIFTI_ENDIAN_LITTLE") => false,
-            None if encoding == Encoding::Ascii => false,
-            Some(other) if encoding != Encoding::Ascii => {
+        // ASCII data have no byte order, whatever the attribute says.
+        let big_endian = match (node.attribute("Endian").map(str::trim), encoding) {
+            (Some("BigEndian" | "GIFTI_ENDIAN_BIG"), _) => true,
+            (Some("LittleEndian" | "GIFTI_ENDIAN_LITTLE"), _) | (_, Encoding::Ascii) => false,
+            (None, _) => return Err(unsupported("no byte order ('Endian') for binary data".into())),
+            (Some(other), _) => {
                 return Err(unsupported(format!("byte order '{}'", show(other.as_bytes()))))
             }
-            None => return Err(unsupported("no byte order ('Endian') for binary data".into())),
-            Some(_) => false,
         };
         let column_major = match node.attribute("ArrayIndexingOrder").map(str::trim) {
             Some("ColumnMajorOrder") => true,
