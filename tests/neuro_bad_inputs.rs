@@ -191,11 +191,11 @@ fn freesurfer_errors_name_the_byte_offset() {
 
 #[test]
 fn curvature_errors() {
-    let good = neuro_bytes("fsaverage5_lh.thickness");
-    assert_eq!(read_vertex_attributes_from_bytes(&good, AttributeFormat::FreeSurferCurv).unwrap()[0].data.len(), 10242);
+    let good = neuro_bytes("brain12k.curv");
+    assert_eq!(read_vertex_attributes_from_bytes(&good, AttributeFormat::FreeSurferCurv).unwrap()[0].data.len(), 12502);
     let err = read_vertex_attributes_from_bytes(&good[..good.len() - 2], AttributeFormat::FreeSurferCurv).unwrap_err();
-    assert!(matches!(err, ReadError::Truncated { expected: 40983, found: 40981, .. }), "{err}");
-    message(&err, &["announces 10242 values"]);
+    assert!(matches!(err, ReadError::Truncated { expected: 50023, found: 50021, .. }), "{err}");
+    message(&err, &["announces 12502 values"]);
     let mut three = good.clone();
     three[11..15].copy_from_slice(&3i32.to_be_bytes());
     message(&read_vertex_attributes_from_bytes(&three, AttributeFormat::FreeSurferCurv).unwrap_err(), &["byte offset 11", "3 values per vertex"]);
@@ -279,7 +279,7 @@ fn attribute_readers_survive_mutations() {
     for (name, format, seed) in [
         ("nibabel_task.func.gii", AttributeFormat::Gifti, 41),
         ("nibabel_rh.aparc.annot.gii", AttributeFormat::Gifti, 42),
-        ("fsaverage5_lh.thickness", AttributeFormat::FreeSurferCurv, 43),
+        ("brain12k.curv", AttributeFormat::FreeSurferCurv, 43),
     ] {
         let bytes = neuro_bytes(name);
         let mut rng = Rng(seed);

@@ -23,20 +23,20 @@ fn neuro(name: &str) -> std::path::PathBuf {
 fn check_reads_a_freesurfer_surface_without_extension() {
     let dir = TempDir::new("neuro-cli-check");
     let mut raw = Vec::new();
-    flate2::read::GzDecoder::new(std::fs::File::open(neuro("fsaverage5_lh.pial.gz")).unwrap()).read_to_end(&mut raw).unwrap();
+    flate2::read::GzDecoder::new(std::fs::File::open(neuro("brain12k.pial.gz")).unwrap()).read_to_end(&mut raw).unwrap();
     let input = dir.file("lh_pial_no_extension", &raw);
     let out = capmesh().args(["check", "--json"]).arg(&input).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(json["n_vertices"], 10242, "{json}");
-    assert_eq!(json["n_faces"], 20480, "{json}");
+    assert_eq!(json["n_vertices"], 12502, "{json}");
+    assert_eq!(json["n_faces"], 25000, "{json}");
     assert_eq!(json["kind"], "closed_sphere", "{json}");
 }
 
 #[test]
 fn param_writes_gifti_and_freesurfer() {
     let dir = TempDir::new("neuro-cli-param");
-    let input = neuro("fsaverage5_pial_left.gii.gz");
+    let input = neuro("brain12k.surf.gii.gz");
     let source = read_mesh(&input).unwrap();
     for name in ["lh.cap.surf.gii", "lh.cap.sphere"] {
         let output = dir.join(name);
@@ -51,8 +51,8 @@ fn param_writes_gifti_and_freesurfer() {
 
 #[test]
 fn a_data_file_is_refused_as_a_mesh() {
-    let out = capmesh().arg("check").arg(neuro("fsaverage5_thick_left.gii.gz")).output().unwrap();
+    let out = capmesh().arg("check").arg(neuro("brain12k_curv.shape.gii")).output().unwrap();
     assert!(!out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("fsaverage5_thick_left.gii.gz") && stderr.contains("per-vertex values"), "{stderr}");
+    assert!(stderr.contains("brain12k_curv.shape.gii") && stderr.contains("per-vertex values"), "{stderr}");
 }

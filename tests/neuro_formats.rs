@@ -1,8 +1,9 @@
-//! GIFTI and FreeSurfer files on real data (tests/data/neuro, see NOTICE.md): nilearn's
-//! fsaverage5 left pial surface and thickness (GZipBase64Binary GIFTI), the same surface and
-//! thickness written as FreeSurfer binaries by nibabel, and nibabel's GIFTI test files (ASCII,
-//! legacy Base64 names, a label file, a 10-array functional file). Expected values are what
-//! nibabel 5.4.2 reads from the same files. Then round trips through every writer variant.
+//! GIFTI and FreeSurfer files on real data (tests/data/neuro, see NOTICE.md): the 12k-vertex
+//! brain of tests/data and its mean curvature, written by nibabel (make_brain12k.py) as a
+//! GZipBase64Binary GIFTI surface and shape file and as FreeSurfer surface and curvature
+//! binaries, and nibabel's GIFTI test files (ASCII, legacy Base64 names, a label file, a
+//! 10-array functional file). Expected values are what nibabel 5.4.2 reads from the same files.
+//! Then round trips through every writer variant.
 
 mod common;
 
@@ -22,32 +23,36 @@ fn neuro(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/neuro").join(name)
 }
 
-fn fsaverage5() -> TriMesh {
-    read_mesh(&neuro("fsaverage5_pial_left.gii.gz")).unwrap()
+fn brain12k() -> TriMesh {
+    read_mesh(&neuro("brain12k.surf.gii.gz")).unwrap()
 }
 
 #[test]
-fn fsaverage5_gifti_surface_matches_nibabel() {
-    let mesh = fsaverage5();
-    assert_eq!((mesh.n_vertices(), mesh.n_faces()), (10242, 20480));
-    assert_eq!(mesh.vertices[0], [-38.73596f32, -19.343365, 67.22014].map(f64::from));
-    assert_eq!(mesh.faces[0], [0, 2564, 2562]);
+fn brain12k_gifti_surface_matches_nibabel() {
+    let mesh = brain12k();
+    assert_eq!((mesh.n_vertices(), mesh.n_faces()), (12502, 25000));
+    assert_eq!(mesh.vertices[0], [19.24109f32, -93.55692, -23.93404].map(f64::from));
+    assert_eq!(mesh.faces[0], [0, 10918, 2826]);
     let sum: f64 = mesh.vertices.iter().flatten().sum();
-    assert!((sum - -349541.7265559135).abs() < 1e-6, "coordinate sum {sum}");
+    assert!((sum - 193067.79661177984).abs() < 1e-6, "coordinate sum {sum}");
     let index_sum: u64 = mesh.faces.iter().flatten().map(|&i| u64::from(i)).sum();
-    assert_eq!(index_sum, 314664900);
+    assert_eq!(index_sum, 473496594);
     assert_eq!(validate(&mesh).unwrap().0, SurfaceKind::ClosedSphere);
+    // The same surface as the OBJ it was made from, to float32.
+    let obj = read_mesh(&common::data("closed_brain12k_choi.obj.gz")).unwrap();
+    assert_eq!(mesh.vertices, rounded(&obj));
+    assert_eq!(mesh.faces, obj.faces);
 }
 
 #[test]
 fn freesurfer_surface_equals_the_gifti_one_with_or_without_extension() {
-    let gifti = fsaverage5();
-    let fs = read_mesh(&neuro("fsaverage5_lh.pial.gz")).unwrap();
+    let gifti = brain12k();
+    let fs = read_mesh(&neuro("brain12k.pial.gz")).unwrap();
     assert_eq!(fs.vertices, gifti.vertices);
     assert_eq!(fs.faces, gifti.faces);
     // No extension at all: recognised by the magic bytes.
     let mut raw = Vec::new();
-    flate2::read::GzDecoder::new(std::fs::File::open(neuro("fsaverage5_lh.pial.gz")).unwrap())
+    flate2::read::GzDecoder::new(std::fs::File::open(neuro("brain12k.pial.gz")).unwrap())
         .read_to_end(&mut raw)
         .unwrap();
     let dir = TempDir::new("fs-noext");
@@ -85,23 +90,24 @@ fn legacy_base64_names_decode_and_bad_indices_are_refused() {
 }
 
 #[test]
-fn thickness_from_gifti_and_freesurfer_agree() {
-    let mesh = fsaverage5();
-    let gifti = read_vertex_attributes_for(&neuro("fsaverage5_thick_left.gii.gz"), &mesh).unwrap();
+fn curvature_from_gifti_and_freesurfer_agree() {
+    let mesh = brain12k();
+    let gifti = read_vertex_attributes_for(&neuro("brain12k_curv.shape.gii"), &mesh).unwrap();
     assert_eq!(gifti.len(), 1);
-    let AttributeData::Scalar(values) = &gifti[0].data else { panic!("thickness must be scalar") };
-    assert_eq!(values[..3], [2.9012215f32, 2.9804876, 2.200272]);
+    assert_eq!(gifti[0].name, "mean curvature");
+    let AttributeData::Scalar(values) = &gifti[0].data else { panic!("curvature must be scalar") };
+    assert_eq!(values[..3], [0.31908748f32, 0.07830478, 0.00433728]);
     let sum: f64 = values.iter().map(|&x| f64::from(x)).sum();
-    assert!((sum - 23292.86506811135).abs() < 1e-6, "{sum}");
+    assert!((sum - 263.64272444412563).abs() < 1e-6, "{sum}");
     // The FreeSurfer file has no extension capmesh knows: recognised by content.
-    let fs = read_vertex_attributes(&neuro("fsaverage5_lh.thickness")).unwrap();
+    let fs = read_vertex_attributes(&neuro("brain12k.curv")).unwrap();
     assert_eq!(fs.len(), 1);
-    assert_eq!(fs[0].name, "fsaverage5_lh.thickness");
+    assert_eq!(fs[0].name, "brain12k.curv");
     assert_eq!(fs[0].data, gifti[0].data);
     // Data of another surface are refused with both counts.
     let bunny = read_mesh(&common::data("closed_bunny_npm.obj.gz")).unwrap();
-    let err = read_vertex_attributes_for(&neuro("fsaverage5_lh.thickness"), &bunny).unwrap_err();
-    assert!(matches!(err, ReadError::AttributeLength { found: 10242, expected: 1839, .. }), "{err}");
+    let err = read_vertex_attributes_for(&neuro("brain12k.curv"), &bunny).unwrap_err();
+    assert!(matches!(err, ReadError::AttributeLength { found: 12502, expected: 1839, .. }), "{err}");
 }
 
 #[test]
@@ -134,11 +140,11 @@ fn functional_file_gives_one_attribute_per_array() {
 
 #[test]
 fn data_files_are_not_meshes_and_surfaces_not_data() {
-    let err = read_mesh(&neuro("fsaverage5_thick_left.gii.gz")).unwrap_err();
+    let err = read_mesh(&neuro("brain12k_curv.shape.gii")).unwrap_err();
     assert!(matches!(err, ReadError::WrongKind { .. }) && err.to_string().contains("vertex attributes"), "{err}");
-    let err = read_mesh(&neuro("fsaverage5_lh.thickness")).unwrap_err();
+    let err = read_mesh(&neuro("brain12k.curv")).unwrap_err();
     assert!(matches!(err, ReadError::WrongKind { .. }) && err.to_string().contains("mris_convert"), "{err}");
-    let err = read_vertex_attributes(&neuro("fsaverage5_pial_left.gii.gz")).unwrap_err();
+    let err = read_vertex_attributes(&neuro("brain12k.surf.gii.gz")).unwrap_err();
     assert!(matches!(err, ReadError::WrongKind { .. }) && err.to_string().contains("read it as a mesh"), "{err}");
     assert_eq!(Format::from_path(Path::new("lh.thickness.shape.gii")), None);
     assert_eq!(Format::from_path(Path::new("x.func.gii.gz")), None);
@@ -154,8 +160,8 @@ fn rounded(mesh: &TriMesh) -> Vec<[f64; 3]> {
 #[test]
 fn gifti_round_trips_in_every_encoding_type_and_byte_order() {
     let dir = TempDir::new("gifti-rt");
-    // fsaverage5 is float32-exact; the icosphere's f64 coordinates show the float64 option.
-    for (name, mesh) in [("fsaverage5", fsaverage5()), ("icosphere", icosphere(2))] {
+    // brain12k is float32-exact; the icosphere's f64 coordinates show the float64 option.
+    for (name, mesh) in [("brain12k", brain12k()), ("icosphere", icosphere(2))] {
         for encoding in [GiftiEncoding::Ascii, GiftiEncoding::Base64Binary, GiftiEncoding::GzipBase64Binary] {
             for coordinates in [GiftiFloat::Float32, GiftiFloat::Float64] {
                 for endian in [Endian::Little, Endian::Big] {
@@ -190,7 +196,7 @@ fn gifti_round_trips_in_every_encoding_type_and_byte_order() {
 #[test]
 fn freesurfer_round_trip() {
     let dir = TempDir::new("fs-rt");
-    for mesh in [fsaverage5(), icosphere(2)] {
+    for mesh in [brain12k(), icosphere(2)] {
         let path = dir.path("lh.white");
         write_mesh(&path, &mesh).unwrap();
         let bytes = std::fs::read(&path).unwrap();

@@ -34,15 +34,15 @@ fn main() -> Result<(), String> {
     let mut entries: Vec<Value> = Vec::new();
 
     // 1. What capmesh reads from the real files.
-    for name in ["fsaverage5_pial_left.gii.gz", "fsaverage5_lh.pial.gz", "nibabel_ascii.gii"] {
+    for name in ["brain12k.surf.gii.gz", "brain12k.pial.gz", "nibabel_ascii.gii"] {
         let file = neuro.join(name);
         let mesh = read_mesh(&file).map_err(|e| e.to_string())?;
         let (vertices, faces) = dump_mesh(&out, name, &mesh);
         entries.push(json!({"kind": "read_surface", "file": file, "vertices": vertices, "faces": faces}));
     }
     for name in [
-        "fsaverage5_thick_left.gii.gz",
-        "fsaverage5_lh.thickness",
+        "brain12k_curv.shape.gii",
+        "brain12k.curv",
         "nibabel_rh.aparc.annot.gii",
         "nibabel_task.func.gii",
     ] {
@@ -65,7 +65,7 @@ fn main() -> Result<(), String> {
     // 2. What capmesh writes, for nibabel to read: a float32-exact surface and one with f64
     // coordinates.
     let sources = [
-        ("fsaverage5", read_mesh(&neuro.join("fsaverage5_pial_left.gii.gz")).map_err(|e| e.to_string())?),
+        ("brain12k", read_mesh(&neuro.join("brain12k.surf.gii.gz")).map_err(|e| e.to_string())?),
         ("bunny", read_mesh(&data.join("closed_bunny_npm.obj.gz")).map_err(|e| e.to_string())?),
     ];
     for (stem, mesh) in &sources {
