@@ -55,7 +55,10 @@ pub mod remesh;
 pub use cap::{CapMap, Domain};
 pub use error::{Error, Result};
 pub use harmonics::{analyze, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
-pub use io::{read_mesh, write_mesh, ReadError, WriteError};
+pub use io::{
+    read_mesh, read_vertex_attributes, write_mesh, AttributeData, ReadError, VertexAttribute,
+    WriteError,
+};
 pub use mesh::TriMesh;
 pub use param::{parameterize, MapQuality, ParamOptions, ParamReport};
 pub use progress::{NoProgress, Progress, Stage};

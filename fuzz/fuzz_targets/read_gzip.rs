@@ -7,7 +7,8 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     let Some((&pick, rest)) = data.split_first() else { return };
-    let format = [Format::Obj, Format::Ply, Format::Off, Format::Stl][pick as usize % 4];
+    let formats = [Format::Obj, Format::Ply, Format::Off, Format::Stl, Format::Gifti, Format::FreeSurfer];
+    let format = formats[pick as usize % formats.len()];
     if let Ok(mesh) = read_mesh_from_gzip_bytes(rest, format) {
         capmesh_fuzz::check_indices(&mesh);
     }

@@ -38,10 +38,11 @@ pub enum ReadError {
         source: std::io::Error,
     },
 
-    /// The extension is not one of the supported formats.
+    /// Neither the extension nor the content names a supported format.
     #[error(
-        "{}: unknown mesh format '{extension}'; capmesh reads .obj, .ply, .off and .stl files, \
-         optionally gzip-compressed (.obj.gz, ...); convert other formats with MeshLab or meshio",
+        "{}: unknown mesh format '{extension}'; capmesh reads .obj, .ply, .off, .stl and GIFTI \
+         (.surf.gii) files and FreeSurfer surfaces (lh.pial, recognised by content), optionally \
+         gzip-compressed (.obj.gz, ...); convert other formats with MeshLab or meshio",
         path.display()
     )]
     UnknownFormat {
@@ -160,6 +161,49 @@ pub enum ReadError {
         /// What is unsupported.
         message: String,
     },
+
+    /// A GIFTI feature capmesh does not read.
+    #[error(
+        "{}, {at}: unsupported GIFTI file: {message}; save it again as a GIFTI with ASCII, \
+         Base64Binary or GZipBase64Binary arrays (e.g. with nibabel or 'wb_command \
+         -gifti-convert')",
+        path.display()
+    )]
+    UnsupportedGifti {
+        /// The file.
+        path: PathBuf,
+        /// Where (the line of the data array).
+        at: Location,
+        /// What is unsupported.
+        message: String,
+    },
+
+    /// A file of per-vertex data (or a surface) was given where the other was expected.
+    #[error("{}: {message}", path.display())]
+    WrongKind {
+        /// The file.
+        path: PathBuf,
+        /// What the file holds and what to do instead.
+        message: String,
+    },
+
+    /// Per-vertex data for a different number of vertices than the mesh has.
+    #[error(
+        "{}: '{name}' has values for {found} vertices but the mesh has {expected}; the data \
+         belong to another surface (e.g. fsaverage5 data on an fsaverage surface), use the \
+         surface they were computed on",
+        path.display()
+    )]
+    AttributeLength {
+        /// The file.
+        path: PathBuf,
+        /// The attribute's name.
+        name: String,
+        /// Values in the file.
+        found: usize,
+        /// Vertices of the mesh.
+        expected: usize,
+    },
 }
 
 /// Why a mesh file could not be written.
@@ -178,7 +222,8 @@ pub enum WriteError {
 
     /// The extension is not one of the supported formats.
     #[error(
-        "{}: unknown mesh format '{extension}'; capmesh writes .obj, .ply, .off and .stl files, \
+        "{}: unknown mesh format '{extension}'; capmesh writes .obj, .ply, .off, .stl and .gii \
+         files and FreeSurfer surfaces (.pial, .white, .inflated, .sphere, .orig, .smoothwm), \
          optionally gzip-compressed (.obj.gz, ...)",
         path.display()
     )]

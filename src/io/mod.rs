@@ -1,5 +1,9 @@
-//! Mesh files: OBJ, PLY (ASCII and binary), OFF and STL (ASCII and binary), chosen by the
-//! file extension (case-insensitive), each optionally gzip-compressed (`mesh.obj.gz`).
+//! Mesh files: OBJ, PLY (ASCII and binary), OFF, STL (ASCII and binary), GIFTI (`.gii`) and
+//! FreeSurfer triangle surfaces (`lh.pial`), chosen by the file extension (case-insensitive)
+//! or, when the extension names none of them, by the content (GIFTI's XML, FreeSurfer's magic
+//! bytes), each optionally gzip-compressed (`mesh.obj.gz`). Per-vertex data files (GIFTI
+//! `.shape.gii` / `.func.gii` / `.label.gii`, FreeSurfer `lh.thickness`) are read as
+//! [`VertexAttribute`]s by [`read_vertex_attributes`].
 //!
 //! Readers load the whole file into memory (read-only; the input is never modified) and parse
 //! it by hand; they never panic, and every error names the file, the line (text) or byte
@@ -7,13 +11,16 @@
 //! syntax, index ranges and finiteness; topology is checked by [`crate::mesh::validate()`].
 //!
 //! Writers use a buffered writer and full `f64` precision (shortest round-tripping decimal in
-//! the text formats, `double` in PLY; STL stores 32-bit floats). They refuse meshes with
-//! out-of-range indices or non-finite coordinates, and write through [`atomic`]: the target
-//! holds its earlier content or the complete new file, never a part. Use [`same_file`] to
-//! refuse overwriting an input file.
+//! the text formats, `double` in PLY; STL, FreeSurfer and GIFTI by default store 32-bit
+//! floats, see [`GiftiOptions`]). They refuse meshes with out-of-range indices or non-finite
+//! coordinates, and write through [`atomic`]: the target holds its earlier content or the
+//! complete new file, never a part. Use [`same_file`] to refuse overwriting an input file.
 
 pub mod atomic;
+mod attribute;
 pub mod error;
+mod freesurfer;
+mod gifti;
 mod obj;
 mod off;
 mod ply;
@@ -24,7 +31,12 @@ use std::fmt;
 use std::io::{BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
+pub use attribute::{
+    read_vertex_attributes, read_vertex_attributes_for, read_vertex_attributes_from_bytes,
+    AttributeData, AttributeFormat, VertexAttribute,
+};
 pub use error::{Location, ReadError, WriteError};
+pub use gifti::{Endian, GiftiEncoding, GiftiFloat, GiftiOptions};
 
 use crate::mesh::TriMesh;
 
@@ -39,7 +51,19 @@ pub enum Format {
     Off,
     /// STL (`.stl`): reads ASCII and binary; writes binary.
     Stl,
+    /// GIFTI surface (`.gii`, `.surf.gii`): see [`GiftiOptions`] for what is written.
+    Gifti,
+    /// FreeSurfer binary triangle surface (`lh.pial`, `lh.white`, ...: recognised by content;
+    /// written for the extensions `.pial`, `.white`, `.inflated`, `.sphere`, `.orig`,
+    /// `.smoothwm`, `.midthickness`).
+    FreeSurfer,
 }
+
+/// The surface names FreeSurfer uses as the last part of a file name (`lh.pial`).
+const FREESURFER_NAMES: [&str; 7] = ["pial", "white", "inflated", "sphere", "orig", "smoothwm", "midthickness"];
+
+/// Second extensions of GIFTI per-vertex data files: not meshes.
+const GIFTI_DATA: [&str; 4] = ["shape", "func", "label", "time"];
 
 impl Format {
     /// The format for an extension (without the dot, any case).
@@ -49,17 +73,40 @@ impl Format {
             "ply" => Some(Format::Ply),
             "off" => Some(Format::Off),
             "stl" => Some(Format::Stl),
+            "gii" => Some(Format::Gifti),
+            e if FREESURFER_NAMES.contains(&e) => Some(Format::FreeSurfer),
             _ => None,
         }
     }
 
     /// The format of a path from its extension; for `name.obj.gz` the extension before `.gz`.
+    /// GIFTI data files (`.shape.gii`, `.func.gii`, `.label.gii`, `.time.gii`) are not meshes:
+    /// `None`.
     pub fn from_path(path: &Path) -> Option<Format> {
+        let mut path = path;
         let ext = path.extension()?.to_str()?;
         if ext.eq_ignore_ascii_case("gz") {
-            return Format::from_extension(Path::new(path.file_stem()?).extension()?.to_str()?);
+            path = Path::new(path.file_stem()?);
         }
-        Format::from_extension(ext)
+        let format = Format::from_extension(path.extension()?.to_str()?)?;
+        let second = Path::new(path.file_stem()?).extension().and_then(|e| e.to_str());
+        if format == Format::Gifti && second.is_some_and(|e| GIFTI_DATA.contains(&e.to_ascii_lowercase().as_str())) {
+            return None;
+        }
+        Some(format)
+    }
+
+    /// The format from the content, for the formats with a signature: FreeSurfer's magic bytes
+    /// (`FF FF FE`, and the quadrangle and curvature ones so that their reader explains them)
+    /// and GIFTI's XML. The text formats are only chosen by extension.
+    pub fn from_content(bytes: &[u8]) -> Option<Format> {
+        if bytes.len() >= 3 && bytes[..2] == [0xFF, 0xFF] && matches!(bytes[2], 0xFD..=0xFF) {
+            Some(Format::FreeSurfer)
+        } else if looks_like_xml(bytes) {
+            Some(Format::Gifti)
+        } else {
+            None
+        }
     }
 
     /// The usual extension.
@@ -69,6 +116,8 @@ impl Format {
             Format::Ply => "ply",
             Format::Off => "off",
             Format::Stl => "stl",
+            Format::Gifti => "gii",
+            Format::FreeSurfer => "pial",
         }
     }
 }
@@ -80,6 +129,8 @@ impl fmt::Display for Format {
             Format::Ply => "PLY",
             Format::Off => "OFF",
             Format::Stl => "STL",
+            Format::Gifti => "GIFTI",
+            Format::FreeSurfer => "FreeSurfer",
         })
     }
 }
@@ -123,21 +174,38 @@ fn gunzip(path: &Path, bytes: &[u8]) -> Result<Vec<u8>, ReadError> {
     })
 }
 
-/// Read a mesh; the format comes from the extension (`.obj`, `.ply`, `.off`, `.stl`, each
-/// optionally followed by `.gz`).
-pub fn read_mesh(path: &Path) -> Result<TriMesh, ReadError> {
-    let format = Format::from_path(path).ok_or_else(|| ReadError::UnknownFormat {
-        path: path.to_path_buf(),
-        extension: extension_of(path),
-    })?;
+/// `true` when the content starts (after a byte-order mark and whitespace) with `<?xml`,
+/// `<!DOCTYPE` or `<GIFTI`.
+pub(crate) fn looks_like_xml(bytes: &[u8]) -> bool {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    let start = bytes.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(bytes.len());
+    let rest = &bytes[start..];
+    [&b"<?xml"[..], b"<!DOCTYPE", b"<GIFTI"].iter().any(|s| rest.starts_with(s))
+}
+
+/// The file's bytes, decompressed when the name ends in `.gz`.
+pub(crate) fn load(path: &Path) -> Result<Vec<u8>, ReadError> {
     let bytes = std::fs::read(path).map_err(|source| ReadError::Io {
         path: path.to_path_buf(),
         source,
     })?;
     if is_gzip(path) {
-        let bytes = gunzip(path, &bytes)?;
-        return parse(path, &bytes, format);
+        return gunzip(path, &bytes);
     }
+    Ok(bytes)
+}
+
+/// Read a mesh; the format comes from the extension (`.obj`, `.ply`, `.off`, `.stl`, `.gii`,
+/// a FreeSurfer surface name such as `.pial`, each optionally followed by `.gz`), or else from
+/// the content (GIFTI, FreeSurfer: `lh.pial` needs no extension).
+pub fn read_mesh(path: &Path) -> Result<TriMesh, ReadError> {
+    let bytes = load(path)?;
+    let format = Format::from_path(path)
+        .or_else(|| Format::from_content(&bytes))
+        .ok_or_else(|| ReadError::UnknownFormat {
+            path: path.to_path_buf(),
+            extension: extension_of(path),
+        })?;
     parse(path, &bytes, format)
 }
 
@@ -164,6 +232,8 @@ fn parse(path: &Path, bytes: &[u8], format: Format) -> Result<TriMesh, ReadError
         Format::Ply => ply::read(path, bytes),
         Format::Off => off::read(path, bytes),
         Format::Stl => stl::read(path, bytes),
+        Format::Gifti => gifti::read(path, bytes),
+        Format::FreeSurfer => freesurfer::read(path, bytes),
     }?;
     if mesh.vertices.is_empty() && mesh.faces.is_empty() {
         return Err(ReadError::Empty {
@@ -179,27 +249,61 @@ fn parse(path: &Path, bytes: &[u8], format: Format) -> Result<TriMesh, ReadError
     Ok(mesh)
 }
 
-/// Write a mesh; the format comes from the extension (PLY is binary little endian), gzip-
-/// compressed when the name ends in `.gz`.
+/// Options of the writers whose format has variants. Defaults: binary PLY, and
+/// [`GiftiOptions::default()`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct WriteOptions {
+    /// Write PLY as ASCII instead of binary little endian.
+    pub ply_ascii: bool,
+    /// Encoding, coordinate type and byte order of GIFTI files.
+    pub gifti: GiftiOptions,
+}
+
+impl WriteOptions {
+    /// Set [`WriteOptions::ply_ascii`].
+    pub fn with_ply_ascii(mut self, ply_ascii: bool) -> Self {
+        self.ply_ascii = ply_ascii;
+        self
+    }
+
+    /// Set [`WriteOptions::gifti`].
+    pub fn with_gifti(mut self, gifti: GiftiOptions) -> Self {
+        self.gifti = gifti;
+        self
+    }
+}
+
+/// Write a mesh; the format comes from the extension (PLY is binary little endian, GIFTI as
+/// [`GiftiOptions::default()`]), gzip-compressed when the name ends in `.gz`.
 /// An existing file is replaced, atomically ([`atomic`]): check [`same_file`] against the
 /// inputs first.
 pub fn write_mesh(path: &Path, mesh: &TriMesh) -> Result<(), WriteError> {
-    commit(path, stage_mesh(path, mesh)?)
+    write_mesh_with(path, mesh, &WriteOptions::default())
+}
+
+/// [`write_mesh`] with options for the formats that have variants (PLY, GIFTI).
+pub fn write_mesh_with(path: &Path, mesh: &TriMesh, options: &WriteOptions) -> Result<(), WriteError> {
+    commit(path, stage_mesh_with(path, mesh, options)?)
 }
 
 /// [`write_mesh`] up to the last step: the complete file waits under a temporary name for
 /// [`atomic::StagedFile::commit`] (or [`atomic::commit_all`] with the other outputs of a run).
 pub fn stage_mesh(path: &Path, mesh: &TriMesh) -> Result<atomic::StagedFile, WriteError> {
+    stage_mesh_with(path, mesh, &WriteOptions::default())
+}
+
+/// [`stage_mesh`] with options for the formats that have variants (PLY, GIFTI).
+pub fn stage_mesh_with(path: &Path, mesh: &TriMesh, options: &WriteOptions) -> Result<atomic::StagedFile, WriteError> {
     let format = Format::from_path(path).ok_or_else(|| WriteError::UnknownFormat {
         path: path.to_path_buf(),
         extension: extension_of(path),
     })?;
-    stage_with(path, mesh, format, false)
+    stage_with(path, mesh, format, options)
 }
 
 /// Write ASCII PLY (whatever the extension; gzip-compressed when it ends in `.gz`).
 pub fn write_ply_ascii(path: &Path, mesh: &TriMesh) -> Result<(), WriteError> {
-    commit(path, stage_with(path, mesh, Format::Ply, true)?)
+    commit(path, stage_with(path, mesh, Format::Ply, &WriteOptions::default().with_ply_ascii(true))?)
 }
 
 fn commit(path: &Path, staged: atomic::StagedFile) -> Result<(), WriteError> {
@@ -211,44 +315,51 @@ fn commit(path: &Path, staged: atomic::StagedFile) -> Result<(), WriteError> {
 
 /// Encode a mesh in memory (PLY as binary little endian). Errors name the file `<bytes>`.
 pub fn write_mesh_to_bytes(mesh: &TriMesh, format: Format) -> Result<Vec<u8>, WriteError> {
+    write_mesh_to_bytes_with(mesh, format, &WriteOptions::default())
+}
+
+/// [`write_mesh_to_bytes`] with options.
+pub fn write_mesh_to_bytes_with(mesh: &TriMesh, format: Format, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
     let path = Path::new("<bytes>");
-    check_writable(path, mesh, format)?;
+    check_writable(path, mesh, format, options)?;
     let mut out = Vec::new();
-    encode(&mut out, mesh, format, false).map_err(|source| WriteError::Io {
+    encode(&mut out, mesh, format, options).map_err(|source| WriteError::Io {
         path: path.to_path_buf(),
         source,
     })?;
     Ok(out)
 }
 
-fn encode(w: &mut dyn Write, mesh: &TriMesh, format: Format, ascii: bool) -> std::io::Result<()> {
+fn encode(w: &mut dyn Write, mesh: &TriMesh, format: Format, options: &WriteOptions) -> std::io::Result<()> {
     match format {
         Format::Obj => obj::write(w, mesh),
-        Format::Ply if ascii => ply::write_ascii(w, mesh),
+        Format::Ply if options.ply_ascii => ply::write_ascii(w, mesh),
         Format::Ply => ply::write_binary(w, mesh),
         Format::Off => off::write(w, mesh),
         Format::Stl => stl::write(w, mesh),
+        Format::Gifti => gifti::write(w, mesh, &options.gifti),
+        Format::FreeSurfer => freesurfer::write(w, mesh),
     }
 }
 
-fn stage_with(path: &Path, mesh: &TriMesh, format: Format, ascii: bool) -> Result<atomic::StagedFile, WriteError> {
-    check_writable(path, mesh, format)?;
+fn stage_with(path: &Path, mesh: &TriMesh, format: Format, options: &WriteOptions) -> Result<atomic::StagedFile, WriteError> {
+    check_writable(path, mesh, format, options)?;
     atomic::stage(path, |file| {
         if is_gzip(path) {
             // Buffer in front of the encoder: the writers make many small writes.
             let gz = flate2::write::GzEncoder::new(file, flate2::Compression::fast());
             let mut buffered = BufWriter::with_capacity(1 << 20, gz);
-            encode(&mut buffered, mesh, format, ascii)?;
+            encode(&mut buffered, mesh, format, options)?;
             buffered.into_inner().map_err(|e| e.into_error())?.finish()?;
             Ok(())
         } else {
-            encode(file, mesh, format, ascii)
+            encode(file, mesh, format, options)
         }
     })
 }
 
 /// Refuse meshes the file would misrepresent.
-fn check_writable(path: &Path, mesh: &TriMesh, format: Format) -> Result<(), WriteError> {
+fn check_writable(path: &Path, mesh: &TriMesh, format: Format, options: &WriteOptions) -> Result<(), WriteError> {
     let n = mesh.n_vertices();
     for (face, f) in mesh.faces.iter().enumerate() {
         if let Some(&index) = f.iter().find(|&&v| v as usize >= n) {
@@ -270,13 +381,24 @@ fn check_writable(path: &Path, mesh: &TriMesh, format: Format) -> Result<(), Wri
             vertex,
         });
     }
-    if format == Format::Stl {
-        if mesh.n_faces() > u32::MAX as usize {
-            return Err(WriteError::Unsupported {
-                path: path.to_path_buf(),
-                message: "STL stores at most 4294967295 triangles; use PLY".into(),
-            });
-        }
+    if matches!(format, Format::Gifti | Format::FreeSurfer) && mesh.n_vertices().max(mesh.n_faces()) > i32::MAX as usize {
+        return Err(WriteError::Unsupported {
+            path: path.to_path_buf(),
+            message: format!("{format} stores at most 2147483647 vertices and faces; use PLY"),
+        });
+    }
+    let float32 = match format {
+        Format::Stl | Format::FreeSurfer => true,
+        Format::Gifti => options.gifti.coordinates == GiftiFloat::Float32,
+        _ => false,
+    };
+    if format == Format::Stl && mesh.n_faces() > u32::MAX as usize {
+        return Err(WriteError::Unsupported {
+            path: path.to_path_buf(),
+            message: "STL stores at most 4294967295 triangles; use PLY".into(),
+        });
+    }
+    if float32 {
         let limit = f64::from(f32::MAX);
         if let Some(vertex) = mesh
             .vertices
@@ -286,7 +408,7 @@ fn check_writable(path: &Path, mesh: &TriMesh, format: Format) -> Result<(), Wri
             return Err(WriteError::Unsupported {
                 path: path.to_path_buf(),
                 message: format!(
-                    "vertex {vertex} does not fit STL's 32-bit floats; use PLY or OBJ"
+                    "vertex {vertex} does not fit {format}'s 32-bit floats; use PLY or OBJ"
                 ),
             });
         }

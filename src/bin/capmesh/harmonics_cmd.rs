@@ -89,7 +89,7 @@ pub fn run(args: HarmonicsArgs) -> Result<(), Failure> {
     for mesh_out in [Some(&args.output), args.cap_mesh.as_ref()].into_iter().flatten() {
         if io::Format::from_path(mesh_out).is_none() {
             return Err(Failure::Error(format!(
-                "{}: unknown mesh format; use .obj, .ply, .off or .stl (optionally .gz)",
+                "{}: unknown mesh format; use .obj, .ply, .off, .stl, .gii or a FreeSurfer surface name (.pial, .white, ...), optionally .gz",
                 mesh_out.display()
             )));
         }

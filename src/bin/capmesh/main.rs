@@ -49,7 +49,7 @@ enum Command {
     /// Check a mesh: counts, boundary loops, components, Euler characteristic, and whether it
     /// is an open disk or a closed genus-0 surface. Exits non-zero otherwise.
     Check {
-        /// Mesh file (.obj, .ply, .off, .stl, optionally .gz).
+        /// Mesh file (.obj, .ply, .off, .stl, .gii, FreeSurfer lh.pial, optionally .gz).
         input: PathBuf,
         /// Print the summary as JSON.
         #[arg(long)]
@@ -166,8 +166,8 @@ enum Command {
     /// 'failed' row; the command then exits 1 after writing the CSV (3 when rows are only
     /// poor). Rows are appended to CSV.partial as meshes finish; --resume reuses them.
     Shape {
-        /// Mesh files and/or directories (searched recursively for .obj, .ply, .off, .stl,
-        /// optionally .gz).
+        /// Mesh files and/or directories (searched recursively for .obj, .ply, .off, .stl, .gii,
+        /// FreeSurfer surface names such as lh.pial, optionally .gz).
         #[arg(required = true)]
         inputs: Vec<PathBuf>,
         /// Output CSV file.

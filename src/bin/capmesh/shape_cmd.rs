@@ -68,7 +68,7 @@ fn write_error(path: &Path, source: std::io::Error) -> Failure {
 pub fn run(args: ShapeArgs) -> Result<(), Failure> {
     let files = collect(&args.inputs)?;
     if files.is_empty() {
-        return Err(Failure::Error("no mesh files (.obj, .ply, .off, .stl, optionally .gz) in the given paths".into()));
+        return Err(Failure::Error("no mesh files (.obj, .ply, .off, .stl, .gii, lh.pial, ..., optionally .gz) in the given paths".into()));
     }
     let partial = partial_path(&args.csv);
     for f in &files {
