@@ -63,6 +63,7 @@ pub use mesh::TriMesh;
 pub use param::{parameterize, MapQuality, ParamOptions, ParamReport};
 pub use progress::{NoProgress, Progress, Stage};
 pub use remesh::shape::{ShapeOptions, ShapeReport};
+pub use remesh::sizing::Sizing;
 pub use remesh::{remesh, CapGrid, Optimize, RemeshOptions, RemeshReport};
 
 /// The README's examples, compiled as doc tests.

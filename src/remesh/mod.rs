@@ -6,6 +6,7 @@ pub mod grid;
 pub mod locate;
 pub mod pullback;
 pub mod shape;
+pub mod sizing;
 
 use crate::refine::area_refine::AreaRefineReport;
 use crate::param::{parameterize, ParamOptions, ParamReport};
@@ -232,6 +233,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     let t_shape = Instant::now();
     let mut shape_report = shape::ShapeReport::default();
     let mut has_plane: Vec<bool> = (0..n).map(|v| v < in_plane).collect();
+    let mut face_targets: Vec<f64> = Vec::new();
     // The punctured quad's area against a remesh face's: the bottom is merged only when the
     // quad is no larger than one face (on a coarse input the quad is a sizeable part of the
     // surface, and the ring above the rim could not reach across it).
@@ -253,10 +255,12 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         progress::check(progress, Stage::Remesh, 0.3, "shaping the triangles")?;
         let lift = shape::state::SurfaceLift::new(mesh, &map.plane, &top_faces);
         let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &input_boundary) };
-        let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed };
-        let (new_faces, stays, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
+        let density = sizing::vertex_density(mesh, options.shape.sizing, faces.len());
+        let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed, density: density.as_deref() };
+        let (new_faces, stays, targets, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
         faces = new_faces;
         fixed = stays;
+        face_targets = targets;
         shape_report = report;
     }
     let shape_seconds = t_shape.elapsed().as_secs_f64();
@@ -267,10 +271,10 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         _ if shaped => options.shape.area_sweeps,
         _ => options.area_equalization,
     };
-    // Targets: the cap triangles' areas while the cap grid's connectivity is kept; equal
-    // areas once the shape stage has changed it.
+    // Targets: the cap triangles' areas while the cap grid's connectivity is kept; the
+    // sizing's (equal areas by default) once the shape stage has changed it.
     let target: Vec<f64> = if shaped {
-        vec![1.0; faces.len()]
+        face_targets
     } else {
         faces.iter().map(|f| triangle_area(grid_mesh.vertices[f[0] as usize], grid_mesh.vertices[f[1] as usize], grid_mesh.vertices[f[2] as usize])).collect()
     };

@@ -123,6 +123,10 @@ enum Command {
         /// collapses in the shape stage (they are on by default and give better angles).
         #[arg(long)]
         no_resample: bool,
+        /// Face sizing: uniform (equal areas, the default) or curvature[=S] (smaller faces
+        /// where the surface is curved, density 1 + S k L at the same face count; S = 3).
+        #[arg(long, default_value = "uniform")]
+        sizing: capmesh::Sizing,
         /// Write figures (PNG, SVG) and an index.md linking them into this directory.
         #[arg(long, value_name = "DIR")]
         figures: Option<PathBuf>,
@@ -331,7 +335,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Shape { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map } => {
             shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, quiet: cli.quiet })
         }
-        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, figures, map } => {
+        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, sizing, figures, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -342,7 +346,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let read_seconds = t_read.elapsed().as_secs_f64();
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-            let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample);
+            let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing);
             let mut options = RemeshOptions { grid, area_equalization, optimize, shape, ..Default::default() };
             map.apply(&mut options.param);
             let (out, rep) = remesh(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;

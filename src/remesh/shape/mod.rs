@@ -53,11 +53,13 @@ pub struct ShapeOptions {
     /// the flip, unless the old pair was bent more: sharper edges are creases and are kept.
     /// Default 60.
     pub crease_deg: f64,
+    /// Face sizing ([`super::sizing`]): uniform (the default) or curvature-adapted.
+    pub sizing: super::sizing::Sizing,
 }
 
 impl Default for ShapeOptions {
     fn default() -> Self {
-        Self { relax_iterations: 20, polish_iterations: 20, resample: true, shape_weight: 0.3, area_sweeps: 10, crease_deg: 60.0 }
+        Self { relax_iterations: 20, polish_iterations: 20, resample: true, shape_weight: 0.3, area_sweeps: 10, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform }
     }
 }
 
@@ -87,6 +89,11 @@ impl ShapeOptions {
         self.area_sweeps = n;
         self
     }
+    /// Set [`ShapeOptions::sizing`].
+    pub fn with_sizing(mut self, sizing: super::sizing::Sizing) -> Self {
+        self.sizing = sizing;
+        self
+    }
     /// Set [`ShapeOptions::crease_deg`].
     pub fn with_crease_deg(mut self, deg: f64) -> Self {
         self.crease_deg = deg;
@@ -109,6 +116,8 @@ pub struct ShapeReport {
     pub moves: usize,
     /// Boundary vertices put on the input's corners.
     pub corners_kept: usize,
+    /// The face sizing used.
+    pub sizing: super::sizing::Sizing,
     /// The remesh's angles before the stage.
     pub before: crate::metrics::angles::AngleQuality,
     /// The remesh's angles after it.
@@ -134,22 +143,45 @@ pub(crate) struct ShapeInput<'a> {
     pub has_plane: &'a [bool],
     /// Whether each vertex stays (rim and bottom of a closed surface).
     pub fixed: &'a [bool],
+    /// The sizing's relative vertex density at each input vertex (`None`: uniform).
+    pub density: Option<&'a [f64]>,
+}
+
+/// Each remesh vertex's relative density: the input's `density` at its surface point (1 for
+/// a vertex without a planar point, and everywhere when uniform).
+fn vertex_densities(mesh: &Shaping, lift: &SurfaceLift, density: Option<&[f64]>) -> Vec<f64> {
+    let Some(density) = density else { return vec![1.0; mesh.plane.len()] };
+    (0..mesh.plane.len())
+        .into_par_iter()
+        .map(|v| if mesh.has_plane[v] { lift.interpolate(mesh.plane[v], mesh.hint[v], density).filter(|r| *r > 0.0).unwrap_or(1.0) } else { 1.0 })
+        .collect()
+}
+
+/// The sizing's edge length factor: `density^(-1/2)` at the edge's midpoint.
+fn length_factor(rho: &[f64]) -> impl Fn(u32, u32) -> f64 + '_ {
+    move |a, b| (0.5 * (rho[a as usize] + rho[b as usize])).powf(-0.5)
+}
+
+/// Each face's density: the mean of its vertices'.
+fn face_densities(faces: &[[u32; 3]], rho: &[f64]) -> Vec<f64> {
+    faces.iter().map(|f| f.iter().map(|&v| rho[v as usize]).sum::<f64>() / 3.0).collect()
 }
 
 /// Run the relaxation and polish iterations of `options` on the remesh `(faces, plane,
 /// position)`; returns the new faces (positions and planar points in place, vertices
 /// added and removed), which vertices must stay in later stages (the rim and bottom of a
-/// closed surface, the boundary of an open one), and the report.
+/// closed surface, the boundary of an open one), each face's relative target area (all 1
+/// when uniform) and the report.
 pub(crate) fn optimize_shape(
     input: &ShapeInput,
     faces: Vec<[u32; 3]>,
     plane: &mut Vec<[f64; 2]>,
     position: &mut Vec<[f64; 3]>,
     options: &ShapeOptions,
-) -> (Vec<[u32; 3]>, Vec<bool>, ShapeReport) {
+) -> (Vec<[u32; 3]>, Vec<bool>, Vec<f64>, ShapeReport) {
     let n = plane.len();
     let before = crate::metrics::angles::angle_quality_of(position, &faces);
-    let mut report = ShapeReport { before, after: before, ..Default::default() };
+    let mut report = ShapeReport { before, after: before, sizing: options.sizing, ..Default::default() };
     let (next, _) = boundary::boundary_cycle(&faces, n);
     let role: Vec<Role> = (0..n)
         .map(|v| {
@@ -184,7 +216,6 @@ pub(crate) fn optimize_shape(
         report.corners_kept = boundary::pin_corners(&mut mesh, &incidence, track, &mut arc, scale);
     }
     let crease = options.crease_deg.to_radians();
-    let uniform = |_: usize| 1.0;
     let (lloyd, mu) = (options.relax_iterations, options.shape_weight);
     // The target edge length: equilateral faces of the pulled-back mesh's mean area.
     let target_len = target_length(&mesh);
@@ -195,9 +226,12 @@ pub(crate) fn optimize_shape(
             // the target length follows the face count back to the pulled-back mesh's.
             len_factor *= (mesh.faces.len() as f64 / faces0 as f64).sqrt();
             let len = target_len * len_factor;
-            report.splits += resample::split_long_edges(&mut mesh, input.track, &mut arc, input.lift, resample::SPLIT * len);
+            // The sizing's lengths scale as density^(-1/2).
+            let rho = vertex_densities(&mesh, input.lift, input.density);
+            report.splits += resample::split_long_edges(&mut mesh, input.track, &mut arc, input.lift, resample::SPLIT * len, &length_factor(&rho));
             let incidence = mesh.incidence();
-            report.collapses += resample::collapse_short_edges(&mut mesh, &incidence, input.lift, resample::COLLAPSE * len, resample::SPLIT * len);
+            let rho = vertex_densities(&mesh, input.lift, input.density);
+            report.collapses += resample::collapse_short_edges(&mut mesh, &incidence, input.lift, resample::COLLAPSE * len, resample::SPLIT * len, &length_factor(&rho));
         }
         if it < lloyd {
             report.flips += flips::flip_to_regular_valence(&mut mesh, crease);
@@ -206,15 +240,19 @@ pub(crate) fn optimize_shape(
         report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
         let incidence = mesh.incidence();
         let classes = mesh.color_classes(&incidence);
-        let ln_target = polish::ln_mean_area(&mesh);
-        let target = |_: usize| ln_target;
+        // Face targets: areas proportional to 1 / density with the mesh's total area.
+        let rho = vertex_densities(&mesh, input.lift, input.density);
+        let face_rho = face_densities(&mesh.faces, &rho);
+        let ln_scale = polish::ln_mean_area(&mesh) + (mesh.faces.len() as f64 / face_rho.iter().map(|r| 1.0 / r).sum::<f64>()).ln();
+        let target = |t: usize| ln_scale - face_rho[t].ln();
+        let weight = |t: usize| face_rho[t];
         for class in &classes {
             let moves: Vec<(u32, Option<Move>)> = class
                 .par_iter()
                 .map(|&v| {
                     let v_ = v as usize;
                     let step = match (mesh.role[v_], input.track) {
-                        (Role::Free, _) if it < lloyd => smooth::relax_vertex(&mesh, &incidence, v_, input.lift, &uniform).map(|(q, x, h)| (q, x, h, 0.0)),
+                        (Role::Free, _) if it < lloyd => smooth::relax_vertex(&mesh, &incidence, v_, input.lift, &weight).map(|(q, x, h)| (q, x, h, 0.0)),
                         (Role::Free, _) => polish::polish_vertex(&mesh, &incidence, v_, input.lift, &target, mu).map(|(q, x, h)| (q, x, h, 0.0)),
                         (Role::Boundary, Some(track)) => boundary::slide_vertex(&mesh, &incidence, track, &arc, v_, prev[v_] as usize, next[v_] as usize).map(|(q, x, s)| (q, x, u32::MAX, s)),
                         _ => None,
@@ -243,9 +281,10 @@ pub(crate) fn optimize_shape(
         report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
     }
     resample::compact(&mut mesh, &mut arc);
+    let face_target = face_densities(&mesh.faces, &vertex_densities(&mesh, input.lift, input.density)).iter().map(|r| 1.0 / r).collect();
     report.after = crate::metrics::angles::angle_quality_of(&mesh.position, &mesh.faces);
     let stays = mesh.role.iter().map(|&r| r != Role::Free).collect();
     *plane = mesh.plane;
     *position = mesh.position;
-    (mesh.faces, stays, report)
+    (mesh.faces, stays, face_target, report)
 }

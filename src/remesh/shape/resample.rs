@@ -80,16 +80,16 @@ fn push_vertex(mesh: &mut Shaping, arc: &mut Vec<f64>, q: [f64; 2], x: [f64; 3],
     (mesh.plane.len() - 1) as u32
 }
 
-/// Split the edges longer than `max_len`, longest first, no two in one face per call.
-/// Returns the number of splits.
-pub(crate) fn split_long_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &mut Vec<f64>, lift: &SurfaceLift, max_len: f64) -> usize {
+/// Split the edges longer than `max_len` times `local(a, b)` (the sizing's length factor at
+/// the edge), longest first, no two in one face per call. Returns the number of splits.
+pub(crate) fn split_long_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &mut Vec<f64>, lift: &SurfaceLift, max_len: f64, local: &dyn Fn(u32, u32) -> f64) -> usize {
     let edges = edge_faces(&mesh.faces);
     let scale = mean_scale(mesh);
     let mut long: Vec<(f64, (u32, u32), [u32; 2])> = edges
         .iter()
         .filter(|(&(a, b), _)| mesh.planar(a) && mesh.planar(b) && resolved(mesh, scale, a, b))
         .map(|(&(a, b), &t)| (length(mesh, a, b), (a, b), t))
-        .filter(|&(l, _, _)| l > max_len)
+        .filter(|&(l, (a, b), _)| l > max_len * local(a, b))
         .collect();
     long.sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
     let mut touched = vec![false; mesh.faces.len()];
@@ -175,14 +175,14 @@ pub(crate) fn split_long_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &
 /// (exactly two common neighbours), no neighbour falls to valence 3, every moved face keeps
 /// its orientation and side, and no edge becomes longer than `max_len`. Removed vertices
 /// keep their slots with no face (see [`compact`]). Returns the number of collapses.
-pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, lift: &SurfaceLift, min_len: f64, max_len: f64) -> usize {
+pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, lift: &SurfaceLift, min_len: f64, max_len: f64, local: &dyn Fn(u32, u32) -> f64) -> usize {
     let edges = edge_faces(&mesh.faces);
     let scale = mean_scale(mesh);
     let mut short: Vec<(f64, (u32, u32), [u32; 2])> = edges
         .iter()
         .filter(|(&(a, b), t)| t[0] != u32::MAX && t[1] != u32::MAX && mesh.planar(a) && mesh.planar(b) && resolved(mesh, scale, a, b))
         .map(|(&(a, b), &t)| (length(mesh, a, b), (a, b), t))
-        .filter(|&(l, _, _)| l < min_len)
+        .filter(|&(l, (a, b), _)| l < min_len * local(a, b))
         .collect();
     short.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
     let n = mesh.plane.len();
@@ -243,7 +243,7 @@ pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, li
             let old = f.map(|w| mesh.position[w as usize]);
             let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
             let n1 = cross(sub(y[1], y[0]), sub(y[2], y[0]));
-            let long = f.iter().any(|&w| w != u && w != v && norm(sub(mesh.position[w as usize], x)) > max_len);
+            let long = f.iter().any(|&w| w != u && w != v && norm(sub(mesh.position[w as usize], x)) > max_len * local(u, v));
             let sliver = smallest_angle(y[0], y[1], y[2]) < smallest_angle(old[0], old[1], old[2]).min(COLLAPSE_MIN_ANGLE_DEG.to_radians());
             mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1) && !long && !sliver
         });

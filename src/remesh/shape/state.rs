@@ -32,6 +32,15 @@ impl<'a> SurfaceLift<'a> {
         Self { surface, faces, locator: Locator::new(plane, faces) }
     }
 
+    /// The input's per-vertex `values` interpolated at the planar point `q` (linear on the
+    /// input face it lies in), trying face `hint` first.
+    pub(crate) fn interpolate(&self, q: [f64; 2], hint: u32, values: &[f64]) -> Option<f64> {
+        let hint = (hint != u32::MAX).then_some(hint as usize);
+        let loc = self.locator.locate_near(q, hint)?;
+        let [a, b, c] = self.faces[loc.face].map(|v| values[v as usize]);
+        Some(loc.bary[0] * a + loc.bary[1] * b + loc.bary[2] * c)
+    }
+
     /// The surface point of the planar point `q` and the input face it lies in, trying face
     /// `hint` first (the answer does not depend on it, see [`Locator::locate_near`]).
     pub(crate) fn lift(&self, q: [f64; 2], hint: u32) -> Option<([f64; 3], u32)> {

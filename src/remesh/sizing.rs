@@ -1,0 +1,209 @@
+//! Face sizing of the remesh (ours; the paper's remesh is uniform, Sec. 4.2): uniform, or a
+//! density that grows with the surface's smoothed mean curvature, so that curved parts get
+//! smaller faces at the same face count.
+//!
+//! A chord of length `h` on a surface of curvature `k` leaves it by about `k h^2 / 8`;
+//! faces of equal error would have `h ~ k^(-1/2)`, a vertex density proportional to `k`.
+//! `--sizing curvature=S` blends the two: density `1 + S k L`, with `L` the uniform remesh's
+//! edge length (so `k L` is the curvature at the remesh's scale), normalised to mean 1 over
+//! the surface's area so that the face count stays what was asked. The curvature is the
+//! cotangent Laplacian's mean curvature `|Delta x| / 2` (Meyer et al. 2003, barycentric
+//! areas), smoothed over the remesh's scale by averaging with the one-ring.
+
+use crate::linalg::laplacian::cotangent_weights;
+use crate::mesh::geometry::{norm, sub, triangle_area};
+use crate::mesh::TriMesh;
+
+/// How the remesh's faces are sized.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Sizing {
+    /// Equal areas: the paper's goal. The default.
+    #[default]
+    Uniform,
+    /// Density `1 + strength * k * L` (see the module docs); `strength` finite and > 0.
+    Curvature {
+        /// The weight of the curvature term ([`DEFAULT_CURVATURE_STRENGTH`] on the command
+        /// line): on the shared meshes 3 lowered the sampled surface distance by up to 38%
+        /// where 1 lowered it by up to 23% (docs/method.md, "Remesh sizing").
+        strength: f64,
+    },
+}
+
+/// The curvature strength of `--sizing curvature` without a value.
+pub const DEFAULT_CURVATURE_STRENGTH: f64 = 3.0;
+
+impl std::str::FromStr for Sizing {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let bad = || format!("unknown sizing {s:?}: use uniform (default), curvature or curvature=S with S a number > 0 (e.g. curvature=2)");
+        match s.split_once('=') {
+            None if s == "uniform" => Ok(Sizing::Uniform),
+            None if s == "curvature" => Ok(Sizing::Curvature { strength: DEFAULT_CURVATURE_STRENGTH }),
+            Some(("curvature", v)) => match v.parse::<f64>() {
+                Ok(x) if x.is_finite() && x > 0.0 => Ok(Sizing::Curvature { strength: x }),
+                _ => Err(bad()),
+            },
+            _ => Err(bad()),
+        }
+    }
+}
+
+impl std::fmt::Display for Sizing {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Sizing::Uniform => write!(f, "uniform"),
+            Sizing::Curvature { strength } => write!(f, "curvature={strength}"),
+        }
+    }
+}
+
+impl serde::Serialize for Sizing {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+/// Smallest radius of curvature counted, in remesh edge lengths.
+const MIN_RADIUS: f64 = 0.25;
+
+/// Most one-ring averaging passes of the curvature.
+const MAX_SMOOTHING_PASSES: usize = 50;
+
+/// Each vertex's unsigned mean curvature `|Delta x| / 2` (barycentric areas); boundary
+/// vertices, whose Laplacian measures the boundary's turn rather than the surface's, take
+/// the mean of their interior neighbours.
+pub(crate) fn mean_curvature(mesh: &TriMesh) -> Vec<f64> {
+    let n = mesh.n_vertices();
+    let weights = cotangent_weights(&mesh.vertices, &mesh.faces);
+    let mut area = vec![0.0f64; n];
+    let mut edge_count = std::collections::HashMap::<(u32, u32), u8>::new();
+    for f in &mesh.faces {
+        let a = triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize]);
+        for k in 0..3 {
+            area[f[k] as usize] += a / 3.0;
+            let (u, v) = (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3]));
+            *edge_count.entry((u, v)).or_insert(0) += 1;
+        }
+    }
+    let mut boundary = vec![false; n];
+    for (&(u, v), &c) in &edge_count {
+        if c == 1 {
+            boundary[u as usize] = true;
+            boundary[v as usize] = true;
+        }
+    }
+    let mut lap = vec![[0.0f64; 3]; n];
+    for (&(i, j), &w) in weights.edges.iter().zip(&weights.weights) {
+        let d = sub(mesh.vertices[j as usize], mesh.vertices[i as usize]);
+        for k in 0..3 {
+            lap[i as usize][k] += w * d[k];
+            lap[j as usize][k] -= w * d[k];
+        }
+    }
+    let mut h: Vec<f64> = (0..n).map(|v| if area[v] > 0.0 && !boundary[v] { 0.5 * norm(lap[v]) / area[v] } else { f64::NAN }).collect();
+    // Boundary vertices: the mean of their finite neighbours (twice, for corners).
+    for _ in 0..2 {
+        let mut sum = vec![(0.0f64, 0u32); n];
+        for &(i, j) in &weights.edges {
+            for (a, b) in [(i, j), (j, i)] {
+                if h[a as usize].is_nan() && h[b as usize].is_finite() {
+                    sum[a as usize].0 += h[b as usize];
+                    sum[a as usize].1 += 1;
+                }
+            }
+        }
+        for v in 0..n {
+            if h[v].is_nan() && sum[v].1 > 0 {
+                h[v] = sum[v].0 / sum[v].1 as f64;
+            }
+        }
+    }
+    h.iter().map(|&x| if x.is_finite() { x } else { 0.0 }).collect()
+}
+
+/// The relative vertex density of `sizing` at each input vertex (mean 1 over the surface's
+/// area), for a remesh of `faces` faces; `None` for [`Sizing::Uniform`].
+pub(crate) fn vertex_density(mesh: &TriMesh, sizing: Sizing, faces: usize) -> Option<Vec<f64>> {
+    let Sizing::Curvature { strength } = sizing else { return None };
+    let n = mesh.n_vertices();
+    let mut area = vec![0.0f64; n];
+    let mut total = 0.0;
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for f in &mesh.faces {
+        let a = triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize]);
+        total += a;
+        for k in 0..3 {
+            area[f[k] as usize] += a / 3.0;
+            neighbours[f[k] as usize].push(f[(k + 1) % 3]);
+        }
+    }
+    if !(total > 0.0) || faces == 0 {
+        return None;
+    }
+    // The uniform remesh's edge length (equilateral faces), and the input's mean edge.
+    let remesh_edge = (4.0 * total / faces as f64 / 3f64.sqrt()).sqrt();
+    let input_edge = (4.0 * total / mesh.n_faces().max(1) as f64 / 3f64.sqrt()).sqrt();
+    // One-ring averaging spreads over about sqrt(passes) input edges: smooth to the remesh's.
+    let passes = ((remesh_edge / input_edge).powi(2).ceil() as usize).clamp(1, MAX_SMOOTHING_PASSES);
+    // Curvature above 1 / (MIN_RADIUS L) is noise or a degenerate face at the remesh's
+    // scale (zero-area faces give unbounded cotangents).
+    let k_max = 1.0 / (MIN_RADIUS * remesh_edge);
+    let mut k: Vec<f64> = mean_curvature(mesh).into_iter().map(|x| x.min(k_max)).collect();
+    for _ in 0..passes {
+        k = (0..n)
+            .map(|v| {
+                let ring = &neighbours[v];
+                if ring.is_empty() {
+                    return k[v];
+                }
+                let mean = ring.iter().map(|&u| k[u as usize]).sum::<f64>() / ring.len() as f64;
+                0.5 * (k[v] + mean)
+            })
+            .collect();
+    }
+    let mut rho: Vec<f64> = k.iter().map(|&x| 1.0 + strength * x * remesh_edge).collect();
+    let mean = rho.iter().zip(&area).map(|(r, a)| r * a).sum::<f64>() / total;
+    for r in rho.iter_mut() {
+        *r /= mean;
+    }
+    Some(rho)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes::icosphere;
+
+    /// On a sphere of radius R the mean curvature is 1/R everywhere (to discretisation error),
+    /// so the curvature density is uniform (to 1% after smoothing).
+    #[test]
+    fn a_sphere_has_curvature_one_over_its_radius_and_uniform_density() {
+        let mut mesh = icosphere(4);
+        for p in mesh.vertices.iter_mut() {
+            *p = p.map(|c| 3.0 * c);
+        }
+        let h = mean_curvature(&mesh);
+        // Barycentric areas are off at the twelve valence-5 vertices (up to 15% there).
+        for &x in &h {
+            assert!((x - 1.0 / 3.0).abs() < 0.15 / 3.0, "{x}");
+        }
+        let mean = h.iter().sum::<f64>() / h.len() as f64;
+        assert!((mean - 1.0 / 3.0).abs() < 0.005 / 3.0, "{mean}");
+        let rho = vertex_density(&mesh, Sizing::Curvature { strength: 2.0 }, 500).unwrap();
+        for &r in &rho {
+            assert!((r - 1.0).abs() < 0.01, "{r}");
+        }
+        assert!(vertex_density(&mesh, Sizing::Uniform, 500).is_none());
+    }
+
+    #[test]
+    fn sizing_parses_and_prints() {
+        assert_eq!("uniform".parse::<Sizing>().unwrap(), Sizing::Uniform);
+        assert_eq!("curvature".parse::<Sizing>().unwrap(), Sizing::Curvature { strength: DEFAULT_CURVATURE_STRENGTH });
+        assert_eq!("curvature=2.5".parse::<Sizing>().unwrap(), Sizing::Curvature { strength: 2.5 });
+        for bad in ["curvature=0", "curvature=-1", "curvature=nan", "curv", ""] {
+            assert!(bad.parse::<Sizing>().unwrap_err().contains("curvature=S"), "{bad}");
+        }
+        assert_eq!(Sizing::Curvature { strength: 2.5 }.to_string(), "curvature=2.5");
+    }
+}
