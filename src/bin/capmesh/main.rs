@@ -10,11 +10,14 @@ macro_rules! outln {
     };
 }
 
+mod basis_args;
 mod cli_progress;
 mod harmonics_cmd;
 mod map_args;
 mod shape_cmd;
+mod shape_groups;
 
+use basis_args::BasisArgs;
 use capmesh::cap::Domain;
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io;
@@ -142,6 +145,12 @@ enum Command {
         /// Domain: adaptive (default), hemisphere, sphere or radius=R.
         #[arg(long, default_value = "adaptive")]
         domain: Domain,
+        #[command(flatten)]
+        basis: BasisArgs,
+        /// Write the reconstruction on a uniform cap mesh of about N faces to -o (a smooth
+        /// remesh) instead of on the input's connectivity.
+        #[arg(long, value_name = "N")]
+        resample_faces: Option<usize>,
     },
     /// Shape analysis of many meshes in parallel: Z* and the order-1 (N = 1) aspect ratio
     /// sigma1/sigma3 of each, one CSV row per mesh. Failed meshes get a 'failed' row; the
@@ -160,6 +169,13 @@ enum Command {
         /// Domain: adaptive (default), hemisphere, sphere or radius=R.
         #[arg(long, default_value = "adaptive")]
         domain: Domain,
+        #[command(flatten)]
+        basis: BasisArgs,
+        /// CSV file of `file,group` rows: compare the aspect ratios of the groups (Welch's
+        /// t-test, effect size, means and spreads) on stdout and in NAME.groups.json and
+        /// NAME.groups.csv next to --csv NAME.csv.
+        #[arg(long, value_name = "GROUPS_CSV")]
+        groups: Option<PathBuf>,
     },
     /// Remeshing metrics of any remeshed surface against its original: d_face, surface
     /// distances (mean and one-sided Hausdorff), angles, valence, self-intersecting faces.
@@ -273,10 +289,14 @@ fn print_quality(q: &capmesh::metrics::RemeshMetrics) -> Result<(), String> {
 
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain } => {
-            harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, quiet: cli.quiet })
+        Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain, basis, resample_faces } => {
+            let basis = basis.kind()?;
+            harmonics_cmd::run(harmonics_cmd::HarmonicsArgs { input, order, output, coefficients, report, cap_mesh, domain, basis, resample_faces, quiet: cli.quiet })
         }
-        Command::Shape { inputs, csv, jobs, domain } => shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, quiet: cli.quiet }),
+        Command::Shape { inputs, csv, jobs, domain, basis, groups } => {
+            let basis = basis.kind()?;
+            shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, basis, groups, quiet: cli.quiet })
+        }
         Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, resample, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {

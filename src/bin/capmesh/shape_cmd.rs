@@ -1,13 +1,14 @@
 //! `capmesh shape`: the paper's N = 1 shape analysis (aspect ratio `sigma1 / sigma3` of the
 //! order-1 adaptive harmonics representation) of a cohort of meshes, in parallel, into a CSV
 //! file with one row per mesh. A mesh that fails gets a `failed` row with its error; the
-//! command then exits non-zero, after writing the whole CSV.
+//! command then exits non-zero, after writing the whole CSV. `--basis scha` uses the spherical
+//! cap harmonics; `--groups` adds the cohort comparison ([`crate::shape_groups`]).
 
 use crate::read;
 use capmesh::param::FlattenReport;
 use capmesh::cap::Domain;
 use capmesh::param::ParamOptions;
-use capmesh::harmonics::{analyze, HarmonicsOptions, HarmonicsReport};
+use capmesh::harmonics::{analyze, BasisKind, HarmonicsOptions, HarmonicsReport};
 use capmesh::io::Format;
 use capmesh::mesh::SurfaceKind;
 use capmesh::progress::NoProgress;
@@ -22,6 +23,8 @@ pub struct ShapeArgs {
     pub csv: PathBuf,
     pub jobs: Option<usize>,
     pub domain: Domain,
+    pub basis: BasisKind,
+    pub groups: Option<PathBuf>,
     pub quiet: bool,
 }
 
@@ -46,14 +49,23 @@ pub fn run(args: ShapeArgs) -> Result<(), String> {
             return Err(format!("refusing to overwrite the input file {}; choose another CSV path", f.display()));
         }
     }
+    // The groups file is checked before any mesh is analysed.
+    let groups = match &args.groups {
+        Some(path) => {
+            let rows = crate::shape_groups::read(path)?;
+            let matched = crate::shape_groups::match_files(&rows, &files, path)?;
+            Some((rows, matched))
+        }
+        None => None,
+    };
     // `--jobs`, else as many as the global pool's threads (`--threads`).
     let jobs = args.jobs.unwrap_or_else(rayon::current_num_threads).max(1);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build().map_err(|e| format!("cannot start worker threads: {e}"))?;
     let bar = counter(files.len(), args.quiet);
-    let options = HarmonicsOptions {
-        order: 1,
-        param: ParamOptions::default().with_domain(args.domain),
-    };
+    let options = HarmonicsOptions::default()
+        .with_order(1)
+        .with_param(ParamOptions::default().with_domain(args.domain))
+        .with_basis(args.basis);
     let rows: Vec<Row> = pool.install(|| {
         files
             .par_iter()
@@ -87,6 +99,11 @@ pub fn run(args: ShapeArgs) -> Result<(), String> {
         failed.len(),
         args.csv.display()
     );
+    if let Some((assignments, matched)) = &groups {
+        // `rows` is in the order of `files`.
+        let ratios: Vec<Option<f64>> = rows.iter().map(|r| r.result.as_ref().ok().map(|(_, rep)| rep.aspect_ratio)).collect();
+        crate::shape_groups::compare(assignments, matched, &ratios, &files, &args.csv)?;
+    }
     if failed.is_empty() {
         return Ok(());
     }
