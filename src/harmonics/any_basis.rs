@@ -1,9 +1,15 @@
 //! One type for either basis ([`BasisKind`]): the fit, the reconstruction and the errors are
 //! written once against [`HarmonicBasis`], which evaluates the adaptive harmonics
 //! ([`CapBasis`]) or the spherical cap harmonics ([`SchaBasis`]) at cap points.
+//!
+//! A spherical cap basis costs one small eigenproblem per order `m` to build, and one analysis
+//! builds the same basis several times (fit, errors, reconstruction): the last few are kept in
+//! a process-wide cache keyed by `(Z*, N, rim condition)` and shared ([`Arc`]).
+
+use std::sync::{Arc, Mutex};
 
 use super::basis::{CapBasis, CapCoordinates};
-use super::kind::BasisKind;
+use super::kind::{BasisKind, CapBoundary};
 use super::scha::{SchaBasis, SchaPoint};
 use super::HarmonicsError;
 
@@ -13,7 +19,7 @@ pub enum HarmonicBasis {
     /// The paper's adaptive harmonics.
     Adaptive(CapBasis),
     /// Spherical cap harmonics.
-    SphericalCap(SchaBasis),
+    SphericalCap(Arc<SchaBasis>),
 }
 
 /// A checked cap point in the form its basis evaluates.
@@ -30,7 +36,7 @@ impl HarmonicBasis {
     pub fn new(kind: BasisKind, z_star: f64, order: usize) -> Result<Self, HarmonicsError> {
         Ok(match kind {
             BasisKind::Adaptive => Self::Adaptive(CapBasis::new(z_star, order)?),
-            BasisKind::SphericalCap(b) => Self::SphericalCap(SchaBasis::new(z_star, order, b)?),
+            BasisKind::SphericalCap(b) => Self::SphericalCap(cached(z_star, order, b)?),
         })
     }
 
@@ -100,4 +106,28 @@ impl HarmonicBasis {
             _ => {}
         }
     }
+}
+
+/// Spherical cap bases kept by [`cached`].
+const CACHED_BASES: usize = 8;
+
+type CacheEntry = ((u64, usize, CapBoundary), Arc<SchaBasis>);
+
+/// The spherical cap basis of `(z_star, order, boundary)`, from the cache or built (and kept).
+fn cached(z_star: f64, order: usize, boundary: CapBoundary) -> Result<Arc<SchaBasis>, HarmonicsError> {
+    static CACHE: Mutex<Vec<CacheEntry>> = Mutex::new(Vec::new());
+    let key = (z_star.to_bits(), order, boundary);
+    if let Ok(cache) = CACHE.lock() {
+        if let Some((_, basis)) = cache.iter().find(|(k, _)| *k == key) {
+            return Ok(Arc::clone(basis));
+        }
+    }
+    let basis = Arc::new(SchaBasis::new(z_star, order, boundary)?);
+    if let Ok(mut cache) = CACHE.lock() {
+        if cache.len() >= CACHED_BASES {
+            cache.remove(0);
+        }
+        cache.push((key, Arc::clone(&basis)));
+    }
+    Ok(basis)
 }

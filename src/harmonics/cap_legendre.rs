@@ -46,7 +46,7 @@
 //! rate falls like `sqrt(1 + Z*)`: `3 / sqrt(1 + Z*)` more trial functions are used (at most
 //! 160; at `Z* = -0.9999` the degrees are then accurate to about `1e-5`, which changes a fit
 //! only through which functions it uses, not how well they are evaluated). Trailing
-//! coefficients below `1e-12` of an eigenfunction's largest are dropped for evaluation.
+//! coefficients below `1e-11` of an eigenfunction's largest are dropped for evaluation.
 //!
 //! Each `Theta_j` is normalized to `integral_{Z*}^{1} Theta_j^2 dx = 1` and signed so that
 //! `f(1) > 0` (positive next to the pole). At `Z* = -1` the Neumann functions are the
@@ -67,7 +67,7 @@ const EXTRA_TRIAL: usize = 24;
 const MAX_EXTRA_NEAR_SPHERE: usize = 160;
 
 /// Relative size below which trailing coefficients of an eigenfunction are dropped.
-const TRUNCATION: f64 = 1e-12;
+const TRUNCATION: f64 = 1e-11;
 
 /// The rim condition of one family (the mixed basis combines two families).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

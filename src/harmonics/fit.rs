@@ -217,8 +217,13 @@ pub fn fit_all_orders_in(
 impl HarmonicFit {
     /// The basis this fit is expressed in; checks that the fit is consistent.
     pub fn basis(&self) -> Result<HarmonicBasis, HarmonicsError> {
-        let basis = HarmonicBasis::new(self.basis, self.z_star, self.order)?;
-        let expected = basis.len();
+        self.check()?;
+        HarmonicBasis::new(self.basis, self.z_star, self.order)
+    }
+
+    /// Checks that the fit has `(order + 1)^2` finite coefficients (without building its basis).
+    pub fn check(&self) -> Result<(), HarmonicsError> {
+        let expected = basis_len(self.order);
         if self.coefficients.len() != expected || !self.coefficients.iter().flatten().all(|c| c.is_finite()) {
             return Err(HarmonicsError::InvalidFit {
                 order: self.order,
@@ -226,7 +231,7 @@ impl HarmonicFit {
                 found: self.coefficients.len(),
             });
         }
-        Ok(basis)
+        Ok(())
     }
 
     /// The representation at `cap_points` using only the terms of orders
@@ -288,7 +293,7 @@ pub fn order_errors(
     }
     let z_star = first.z_star;
     for f in fits {
-        f.basis()?;
+        f.check()?;
         if f.z_star.to_bits() != z_star.to_bits() {
             return Err(HarmonicsError::MixedZStar {
                 first: z_star,
