@@ -171,6 +171,12 @@ fn cap_harmonics_keep_the_boundary_and_resample() {
     options.resample_faces = 1500;
     let (grid, _) = boundary(&options);
     assert!((1300..=1700).contains(&grid.faces.len()), "{} faces", grid.faces.len());
+    options.resample_faces = u32::MAX;
+    let mut out = null_mut();
+    let status = unsafe { capmesh_v1_harmonics(&arrays.view(), &options, None, null_mut(), &mut out, null_mut()) };
+    assert_eq!(status, CAPMESH_V1_INVALID_ARGUMENT, "{}", last_error());
+    assert!(last_error().contains("resample"), "{}", last_error());
+    options.resample_faces = 0;
 
     let mut out = null_mut();
     for (basis, boundary) in [(7, CAPMESH_V1_BOUNDARY_NEUMANN), (CAPMESH_V1_BASIS_SCHA, -1)] {

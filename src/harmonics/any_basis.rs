@@ -98,12 +98,13 @@ impl HarmonicBasis {
     }
 
     /// Every function at `point` into `out[..self.len()]`; `scratch` is reused between calls.
-    /// A point checked by the other kind of basis leaves `out` unchanged.
+    /// A point checked by the other kind of basis leaves `out` unchanged (a debug assertion).
     pub(crate) fn fill(&self, point: &BasisPoint, scratch: &mut Vec<f64>, out: &mut [f64]) {
         match (self, point) {
             (Self::Adaptive(b), BasisPoint::Adaptive(c)) => b.fill(c, scratch, out),
             (Self::SphericalCap(b), BasisPoint::SphericalCap(c)) => b.fill(c, scratch, out),
-            _ => {}
+            // Points come from `self.coordinates`; a point of the other basis is a caller bug.
+            _ => debug_assert!(false, "a cap point checked by the other harmonic basis"),
         }
     }
 }
