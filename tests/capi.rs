@@ -149,6 +149,46 @@ fn harmonics_reconstruct_the_surface() {
     assert!(last_error().contains("basis functions"), "{}", last_error());
 }
 
+#[test]
+fn cap_harmonics_keep_the_boundary_and_resample() {
+    let input = read("open_meg_helmet_babysquid_mne.obj.gz");
+    let arrays = Arrays::of(&input);
+    let mut options = capmesh_v1_harmonics_options_default();
+    assert_eq!((options.basis, options.boundary, options.resample_faces), (CAPMESH_V1_BASIS_AH, CAPMESH_V1_BOUNDARY_NEUMANN, 0));
+    options.order = 6;
+    let boundary = |options: &capmesh_v1_harmonics_options| {
+        let (mut out, mut report) = (null_mut(), null_mut());
+        let status = unsafe { capmesh_v1_harmonics(&arrays.view(), options, None, null_mut(), &mut out, &mut report) };
+        assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+        let report: serde_json::Value = serde_json::from_str(&take_string(report)).unwrap();
+        (take_mesh(out), report["boundary_max_relative"].as_f64().unwrap())
+    };
+    let (_, ah) = boundary(&options);
+    options.basis = CAPMESH_V1_BASIS_SCHA;
+    let (rec, scha) = boundary(&options);
+    assert_eq!(rec.faces, input.faces);
+    assert!(scha < 0.5 * ah, "cap harmonics boundary error {scha} vs adaptive harmonics {ah}");
+    options.resample_faces = 1500;
+    let (grid, _) = boundary(&options);
+    assert!((1300..=1700).contains(&grid.faces.len()), "{} faces", grid.faces.len());
+    options.resample_faces = u32::MAX;
+    let mut out = null_mut();
+    let status = unsafe { capmesh_v1_harmonics(&arrays.view(), &options, None, null_mut(), &mut out, null_mut()) };
+    assert_eq!(status, CAPMESH_V1_INVALID_ARGUMENT, "{}", last_error());
+    assert!(last_error().contains("resample"), "{}", last_error());
+    options.resample_faces = 0;
+
+    let mut out = null_mut();
+    for (basis, boundary) in [(7, CAPMESH_V1_BOUNDARY_NEUMANN), (CAPMESH_V1_BASIS_SCHA, -1)] {
+        options.basis = basis;
+        options.boundary = boundary;
+        let status = unsafe { capmesh_v1_harmonics(&arrays.view(), &options, None, null_mut(), &mut out, null_mut()) };
+        assert_eq!(status, CAPMESH_V1_INVALID_ARGUMENT);
+        assert!(out.is_null());
+        assert!(last_error().contains("is not"), "{}", last_error());
+    }
+}
+
 struct Calls {
     count: usize,
     stages: Vec<i32>,

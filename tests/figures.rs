@@ -134,7 +134,7 @@ fn remesh_figures_compare_with_the_input() {
 fn harmonics_figures_show_the_reconstruction() {
     let m = mesh("closed_bird_skull_CPallidusA_choi.obj.gz");
     let map = parameterize(&m, &ParamOptions::default(), &NoProgress).unwrap();
-    let output = capmesh::harmonics::analyze_map(&m, &map, 4, &NoProgress).unwrap();
+    let output = capmesh::harmonics::analyze_map(&m, &map, &capmesh::harmonics::HarmonicsOptions::default().with_order(4), &NoProgress).unwrap();
     let dir = TempDir::new("figures-harmonics");
     let set = harmonics_figures(&dir, "skull", &m, &map, &output, &FigureOptions::default().with_view_size(150)).unwrap();
     check_files(&set);

@@ -83,6 +83,7 @@ fn harmonics_on_the_face_writes_reconstruction_coefficients_and_report() {
     let z_star = c["z_star"].as_f64().unwrap();
     assert_eq!(Some(z_star), r["z_star"].as_f64());
     assert!((c["q1"].as_f64().unwrap() - 2.0 / (1.0 - z_star)).abs() < 1e-12);
+    assert!(c["coefficients"].as_array().unwrap().iter().all(|e| e["degree"].as_f64() == e["n"].as_f64()), "AH degrees are the orders");
     assert!((c["q2"].as_f64().unwrap() + (1.0 + z_star) / (1.0 - z_star)).abs() < 1e-12);
     let list = c["coefficients"].as_array().unwrap();
     assert_eq!(list.len(), basis_len(ORDER));
@@ -93,7 +94,9 @@ fn harmonics_on_the_face_writes_reconstruction_coefficients_and_report() {
         assert!(coefficients_by_index[i].is_none(), "({n}, {m}) twice");
         coefficients_by_index[i] = Some(["x", "y", "z"].map(|k| e[k].as_f64().unwrap()));
     }
+    assert_eq!(c["basis"].as_str(), Some("ah"));
     let fitted = HarmonicFit {
+        basis: Default::default(),
         z_star,
         order: c["order"].as_u64().unwrap() as usize,
         coefficients: coefficients_by_index.into_iter().map(Option::unwrap).collect(),

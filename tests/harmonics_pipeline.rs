@@ -82,16 +82,16 @@ fn unreferenced_vertices_keep_their_position() {
     let stray = [1.0e3, -2.0e3, 5.0e2];
     mesh.vertices.push(stray);
     let map = capmesh::param::parameterize(&mesh, &Default::default(), &NoProgress).unwrap();
-    let out = analyze_map(&mesh, &map, 3, &NoProgress).unwrap();
+    let out = analyze_map(&mesh, &map, &HarmonicsOptions::default().with_order(3), &NoProgress).unwrap();
     assert_eq!((out.report.vertices, out.report.fitted_vertices), (2172, 2171));
     assert_eq!(out.reconstructed.vertices[2171], stray);
     // The fit ignores the stray vertex: the same errors as without it.
-    let clean = analyze_map(&helmet(), &map_without_last(&map), 3, &NoProgress).unwrap();
+    let clean = analyze_map(&helmet(), &map_without_last(&map), &HarmonicsOptions::default().with_order(3), &NoProgress).unwrap();
     for (a, b) in out.report.errors_by_order.iter().zip(&clean.report.errors_by_order) {
         assert!((a.mean_distance - b.mean_distance).abs() <= 1e-12 * b.mean_distance, "{a:?} vs {b:?}");
     }
     // A map of another mesh is refused.
-    let err = analyze_map(&helmet(), &map, 3, &NoProgress).unwrap_err();
+    let err = analyze_map(&helmet(), &map, &HarmonicsOptions::default().with_order(3), &NoProgress).unwrap_err();
     assert!(err.to_string().contains("2172 cap positions for a mesh of 2171 vertices"), "{err}");
 }
 

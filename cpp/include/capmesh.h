@@ -17,6 +17,32 @@
 #include <stdint.h>
 
 /**
+ * `capmesh_v1_harmonics_options.basis`: the paper's adaptive harmonics (default).
+ */
+#define CAPMESH_V1_BASIS_AH 0
+
+/**
+ * `capmesh_v1_harmonics_options.basis`: spherical cap harmonics (keep an open surface's
+ * boundary loop), with the rim condition `boundary`.
+ */
+#define CAPMESH_V1_BASIS_SCHA 1
+
+/**
+ * `capmesh_v1_harmonics_options.boundary`: Neumann rim condition (default).
+ */
+#define CAPMESH_V1_BOUNDARY_NEUMANN 0
+
+/**
+ * `capmesh_v1_harmonics_options.boundary`: Dirichlet rim condition.
+ */
+#define CAPMESH_V1_BOUNDARY_DIRICHLET 1
+
+/**
+ * `capmesh_v1_harmonics_options.boundary`: Haines' mixed set.
+ */
+#define CAPMESH_V1_BOUNDARY_MIXED 2
+
+/**
  * `capmesh_v1_param_options.domain`: the adaptive cap of the paper (default).
  */
 #define CAPMESH_V1_DOMAIN_ADAPTIVE 0
@@ -296,7 +322,7 @@ typedef struct capmesh_v1_remesh_options {
 } capmesh_v1_remesh_options;
 
 /**
- * Adaptive harmonics options. Start from `capmesh_v1_harmonics_options_default()`.
+ * Harmonics options. Start from `capmesh_v1_harmonics_options_default()`.
  */
 typedef struct capmesh_v1_harmonics_options {
   /**
@@ -308,6 +334,19 @@ typedef struct capmesh_v1_harmonics_options {
    * Parameterization options (the planar disk domain is refused).
    */
   struct capmesh_v1_param_options param;
+  /**
+   * One of `CAPMESH_V1_BASIS_*`. Default adaptive harmonics (0).
+   */
+  int32_t basis;
+  /**
+   * One of `CAPMESH_V1_BOUNDARY_*`, used with `CAPMESH_V1_BASIS_SCHA`. Default Neumann (0).
+   */
+  int32_t boundary;
+  /**
+   * 0 (default): the reconstruction has the input's connectivity. Otherwise it is a uniform
+   * cap mesh of about this many faces (a smooth remesh of the representation).
+   */
+  uint32_t resample_faces;
 } capmesh_v1_harmonics_options;
 
 #ifdef __cplusplus
@@ -409,11 +448,13 @@ void capmesh_v1_string_free(char *text);
 struct capmesh_v1_harmonics_options capmesh_v1_harmonics_options_default(void);
 
 /**
- * Parameterize `mesh` onto its cap, fit it with the adaptive harmonics of every order up to
- * `options->order` (NULL: defaults) and reconstruct it. On success `*out_reconstructed` is the
- * input connectivity at the order-N positions and `*out_report_json` (unless NULL) the JSON
- * report (`z_star`, `order`, `errors_by_order` with mean/max errors per order,
- * `aspect_ratio`, `singular_values`, `param`, `seconds`, ...).
+ * Parameterize `mesh` onto its cap, fit it with the harmonics `options->basis` of every order
+ * up to `options->order` (NULL: defaults) and reconstruct it. On success `*out_reconstructed`
+ * is the input connectivity at the order-N positions (or, with `options->resample_faces > 0`,
+ * a uniform cap mesh of about that many faces on the order-N surface) and `*out_report_json`
+ * (unless NULL) the JSON report (`basis`, `z_star`, `order`, `errors_by_order` with mean/max
+ * errors per order, `boundary_max_relative`, `aspect_ratio`, `singular_values`, `param`,
+ * `seconds`, ...).
  *
  * # Safety
  * As `capmesh_v1_parameterize`.

@@ -187,7 +187,8 @@ struct RemeshOptions : capmesh_v1_remesh_options {
   }
 };
 
-/// Adaptive harmonics options with capmesh's defaults (order 10).
+/// Harmonics options with capmesh's defaults (order 10, the paper's adaptive harmonics); set
+/// `basis = CAPMESH_V1_BASIS_SCHA` for spherical cap harmonics, `resample_faces` for a cap grid.
 struct HarmonicsOptions : capmesh_v1_harmonics_options {
   HarmonicsOptions() : capmesh_v1_harmonics_options(capmesh_v1_harmonics_options_default()) {}
   explicit HarmonicsOptions(uint32_t max_order) : HarmonicsOptions() { order = max_order; }
@@ -264,7 +265,7 @@ inline Result remesh(const capmesh_v1_mesh_view &mesh, const RemeshOptions &opti
   return r;
 }
 
-/// Fit adaptive harmonics up to options.order; result: the order-N reconstruction.
+/// Fit harmonics up to options.order; result: the order-N reconstruction.
 inline Result harmonics(const capmesh_v1_mesh_view &mesh, const HarmonicsOptions &options = {},
                         const Progress &progress = {}) {
   detail::ProgressBridge bridge{&progress, nullptr};

@@ -153,8 +153,10 @@ QString FilterCapmeshPlugin::filterInfo(ActionIDType f) const
 		       "(by default shape+area: well-shaped triangles of near-equal area, every vertex "
 		       "on the input surface). The result is a new layer. capmesh " + version;
 	case FP_HARMONICS:
-		return "Fits the adaptive harmonic basis of the cap to the surface coordinates up to order "
-		       "N and adds the reconstructed surface as a new layer. capmesh " + version;
+		return "Fits a harmonic basis of the cap (the paper's adaptive harmonics, or spherical cap "
+		       "harmonics that keep an open surface's boundary loop) to the surface coordinates up "
+		       "to order N and adds the reconstructed surface (optionally resampled on a cap grid) "
+		       "as a new layer. capmesh " + version;
 	}
 	return QString();
 }

@@ -15,6 +15,10 @@ const QStringList domainNames = {
 const QStringList gridNames = {"Uniform", "Latitude-longitude"};
 // In the order of CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA, _AREA, _NONE (0, 1, 2).
 const QStringList optimizeNames = {"shape+area", "area", "none"};
+// Index i: basis and boundary of capmesh_v1_harmonics_options (0: AH; 1..3: SCHA with
+// boundary i - 1).
+const QStringList basisNames = {
+	"adaptive harmonics (paper)", "cap harmonics, Neumann", "cap harmonics, Dirichlet", "cap harmonics, mixed"};
 
 uint32_t positive(const RichParameterList& list, const char* name)
 {
@@ -136,6 +140,18 @@ void addHarmonicsOptions(RichParameterList& list, const capmesh_v1_harmonics_opt
 		"Largest order N of the adaptive harmonic fit: (N + 1)^2 basis functions on the cap, so "
 		"the mesh needs at least that many vertices. Higher orders reproduce finer detail. "
 		"The 'Unit disk' domain is refused here."));
+	const int basis = d.basis == CAPMESH_V1_BASIS_SCHA ? 1 + d.boundary : 0;
+	list.addParam(RichEnum(
+		"Basis", basis, basisNames, "Harmonic basis",
+		"adaptive harmonics: the paper's basis (it maps an open surface's whole boundary loop to "
+		"one point). cap harmonics: spherical cap harmonics on the true polar angle, Legendre "
+		"functions of non-integer degree with a Neumann (keeps the boundary loop; recommended), "
+		"Dirichlet (boundary to the origin) or mixed rim condition (Haines' set; rank deficient "
+		"on closed surfaces)."));
+	list.addParam(RichInt(
+		"ResampleFaces", clampToInt(d.resample_faces), "Resample on a cap grid (faces)",
+		"0: the reconstruction keeps the input's connectivity. N > 0: the reconstructed surface "
+		"is evaluated on a uniform cap mesh of about N faces (a smooth remesh)."));
 	addParamOptions(list, d.param);
 }
 
@@ -146,6 +162,15 @@ capmesh_v1_harmonics_options readHarmonicsOptions(const RichParameterList& list)
 	if (order < 0)
 		throw MLException(QString("Capmesh: the order must be >= 0, got %1.").arg(order));
 	o.order = uint32_t(order);
+	const int basis = list.getEnum("Basis");
+	if (basis < 0 || basis >= basisNames.size())
+		throw MLException(QString("Capmesh: unknown harmonic basis %1.").arg(basis));
+	o.basis = basis == 0 ? CAPMESH_V1_BASIS_AH : CAPMESH_V1_BASIS_SCHA;
+	o.boundary = basis == 0 ? CAPMESH_V1_BOUNDARY_NEUMANN : int32_t(basis - 1);
+	const int faces = list.getInt("ResampleFaces");
+	if (faces < 0)
+		throw MLException(QString("Capmesh: the resampling face count must be >= 0, got %1.").arg(faces));
+	o.resample_faces = uint32_t(faces);
 	o.param = readParamOptions(list);
 	return o;
 }

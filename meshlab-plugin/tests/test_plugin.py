@@ -284,3 +284,17 @@ def test_bad_parameter_is_refused(plugin, mesh_file):
     r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", shapeweight=-1.0)
     assert r["raised"] and "(invalid argument): shape_weight = -1 is negative" in r["message"]
     assert r["meshes"] == 1
+
+
+def test_cap_harmonics_keep_the_boundary_loop(plugin, mesh_file):
+    ms = load(mesh_file, OPEN_MESH)
+    boundary = {}
+    for layer, basis in ((1, 0), (2, 1)):  # adaptive harmonics, cap harmonics (Neumann)
+        ms.set_current_mesh(0)
+        report = ms.apply_filter("capmesh_harmonics_reconstruction", order=6, basis=basis)
+        assert ms.current_mesh_id() == layer
+        boundary[basis] = report["boundary_max_relative"]
+    assert boundary[1] < 0.5 * boundary[0]
+    ms.set_current_mesh(0)
+    ms.apply_filter("capmesh_harmonics_reconstruction", order=6, basis=1, resamplefaces=2000)
+    assert 1800 <= ms.current_mesh().face_number() <= 2200

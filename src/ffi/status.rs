@@ -67,7 +67,10 @@ pub(crate) fn status_of(error: &Error) -> capmesh_v1_status {
         Error::Cancelled(_) => S::CAPMESH_V1_CANCELLED,
         Error::Internal(_) => S::CAPMESH_V1_INTERNAL,
         Error::Harmonics(
-            HarmonicsError::OrderTooLarge { .. } | HarmonicsError::TooFewPoints { .. } | HarmonicsError::TooLarge { .. },
+            HarmonicsError::OrderTooLarge { .. }
+            | HarmonicsError::TooFewPoints { .. }
+            | HarmonicsError::TooLarge { .. }
+            | HarmonicsError::InvalidResample { .. },
         ) => S::CAPMESH_V1_INVALID_ARGUMENT,
         Error::Harmonics(_) => S::CAPMESH_V1_NUMERICAL,
     }

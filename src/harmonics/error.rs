@@ -180,6 +180,36 @@ pub enum HarmonicsError {
         other: f64,
     },
 
+    /// The spherical cap harmonics' eigenproblem of one order could not be solved.
+    #[error(
+        "the spherical cap harmonics of order m = {m} on Z* = {z_star} could not be computed \
+         (the eigenproblem's matrices are not positive definite); lower the order or use --basis ah"
+    )]
+    CapEigenFailed {
+        /// The order `m`.
+        m: usize,
+        /// The cap's lower bound.
+        z_star: f64,
+    },
+
+    /// A fit in one basis was used where another basis is needed.
+    #[error("this needs a fit in the {expected} basis, but the fit is in the {found} basis; refit with that basis")]
+    WrongBasis {
+        /// The basis needed.
+        expected: &'static str,
+        /// The fit's basis.
+        found: &'static str,
+    },
+
+    /// A resampling face count of 0 or too large.
+    #[error("cannot resample the reconstruction with {faces} faces: give between 1 and {max}")]
+    InvalidResample {
+        /// The face count asked for.
+        faces: usize,
+        /// The largest accepted count.
+        max: usize,
+    },
+
     /// A dense decomposition failed to converge.
     #[error("the singular value decomposition did not converge")]
     SvdFailed,

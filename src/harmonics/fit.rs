@@ -17,9 +17,12 @@
 //! A column whose diagonal entry `|R_jj|` falls below `max(k, p) eps max|R_ii|` is reported as
 //! [`HarmonicsError::RankDeficient`] instead of producing huge coefficients.
 //!
-//! Every reconstruction is constant along the cap's boundary circle (see [`super::basis`], "The
-//! boundary circle"): for an open surface, [`OrderError::max_distance`] stays near the size of
-//! the boundary loop at every order.
+//! With the adaptive harmonics every reconstruction is constant along the cap's boundary circle
+//! (see [`super::basis`], "The boundary circle"): for an open surface,
+//! [`OrderError::max_distance`] stays near the size of the boundary loop at every order. The
+//! spherical cap harmonics ([`super::scha`], [`BasisKind::SphericalCap`]) have the same layout
+//! (`(N + 1)^2` functions, orders in sequence), so the same solver fits them
+//! ([`fit_all_orders_in`]) and their reconstruction keeps the boundary loop (Neumann or mixed).
 //!
 //! # Cost
 //!
@@ -34,7 +37,9 @@ use faer::{Conj, Mat};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::basis::{basis_degree, basis_len, CapBasis, CapCoordinates};
+use super::any_basis::{BasisPoint, HarmonicBasis};
+use super::basis::{basis_degree, basis_len};
+use super::kind::BasisKind;
 use super::HarmonicsError;
 
 /// Largest design matrix (`points * (order + 1)^2` entries) the fit builds: 1.6 GB of `f64`
@@ -44,10 +49,13 @@ pub const MAX_DESIGN_ENTRIES: usize = 200_000_000;
 /// Rows of the design matrix filled per parallel task.
 const ROW_CHUNK: usize = 512;
 
-/// Adaptive harmonics coefficients of a surface: `v(theta, phi) ~ sum_(n <= order) sum_m
-/// C_n^m A_n^m(theta, phi)` (Eq. 27).
+/// Harmonic coefficients of a surface: `v(theta, phi) ~ sum_(n <= order) sum_m C_n^m
+/// A_n^m(theta, phi)` (Eq. 27), `A_n^m` the adaptive harmonics or the spherical cap harmonics.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct HarmonicFit {
+    /// The basis (default, also when absent from JSON: the adaptive harmonics).
+    #[serde(default)]
+    pub basis: BasisKind,
     /// The cap's lower bound `Z*`.
     pub z_star: f64,
     /// The largest order `N`.
@@ -81,7 +89,18 @@ pub fn fit(
     z_star: f64,
     order: usize,
 ) -> Result<HarmonicFit, HarmonicsError> {
-    let mut fits = fit_all_orders(cap_points, values, z_star, order)?;
+    fit_in(BasisKind::Adaptive, cap_points, values, z_star, order)
+}
+
+/// As [`fit`], in the basis `kind`.
+pub fn fit_in(
+    kind: BasisKind,
+    cap_points: &[[f64; 3]],
+    values: &[[f64; 3]],
+    z_star: f64,
+    order: usize,
+) -> Result<HarmonicFit, HarmonicsError> {
+    let mut fits = fit_all_orders_in(kind, cap_points, values, z_star, order)?;
     fits.pop().ok_or(HarmonicsError::TooFewPoints {
         points: cap_points.len(),
         basis: basis_len(order),
@@ -90,14 +109,25 @@ pub fn fit(
 }
 
 /// The least-squares fits at every order `0..=order` (element `n` is the fit at order `n`), from
-/// one QR factorization (see the module docs).
+/// one QR factorization (see the module docs), in the adaptive harmonics.
 pub fn fit_all_orders(
     cap_points: &[[f64; 3]],
     values: &[[f64; 3]],
     z_star: f64,
     order: usize,
 ) -> Result<Vec<HarmonicFit>, HarmonicsError> {
-    let basis = CapBasis::new(z_star, order)?;
+    fit_all_orders_in(BasisKind::Adaptive, cap_points, values, z_star, order)
+}
+
+/// As [`fit_all_orders`], in the basis `kind`.
+pub fn fit_all_orders_in(
+    kind: BasisKind,
+    cap_points: &[[f64; 3]],
+    values: &[[f64; 3]],
+    z_star: f64,
+    order: usize,
+) -> Result<Vec<HarmonicFit>, HarmonicsError> {
+    let basis = HarmonicBasis::new(kind, z_star, order)?;
     let (k, p) = (cap_points.len(), basis.len());
     if values.len() != k {
         return Err(HarmonicsError::LengthMismatch {
@@ -175,6 +205,7 @@ pub fn fit_all_orders(
             }
         }
         fits.push(HarmonicFit {
+            basis: kind,
             z_star,
             order: n,
             coefficients,
@@ -185,9 +216,14 @@ pub fn fit_all_orders(
 
 impl HarmonicFit {
     /// The basis this fit is expressed in; checks that the fit is consistent.
-    pub fn basis(&self) -> Result<CapBasis, HarmonicsError> {
-        let basis = CapBasis::new(self.z_star, self.order)?;
-        let expected = basis.len();
+    pub fn basis(&self) -> Result<HarmonicBasis, HarmonicsError> {
+        self.check()?;
+        HarmonicBasis::new(self.basis, self.z_star, self.order)
+    }
+
+    /// Checks that the fit has `(order + 1)^2` finite coefficients (without building its basis).
+    pub fn check(&self) -> Result<(), HarmonicsError> {
+        let expected = basis_len(self.order);
         if self.coefficients.len() != expected || !self.coefficients.iter().flatten().all(|c| c.is_finite()) {
             return Err(HarmonicsError::InvalidFit {
                 order: self.order,
@@ -195,18 +231,17 @@ impl HarmonicFit {
                 found: self.coefficients.len(),
             });
         }
-        Ok(basis)
+        Ok(())
     }
 
     /// The representation at `cap_points` using only the terms of orders
     /// `n <= min(order_limit, self.order)` (Eq. 27). This *truncates* the coefficients; for the
     /// least-squares fit at a lower order use [`fit_all_orders`].
     pub fn reconstruct(&self, cap_points: &[[f64; 3]], order_limit: usize) -> Result<Vec<[f64; 3]>, HarmonicsError> {
-        self.basis()?;
+        let basis = self.basis()?;
         let limit = order_limit.min(self.order);
-        let basis = CapBasis::new(self.z_star, limit)?;
         let coords = coordinates(&basis, cap_points)?;
-        let coefficients = &self.coefficients[..basis.len()];
+        let coefficients = &self.coefficients[..basis_len(limit)];
         Ok(coords
             .par_chunks(ROW_CHUNK)
             .flat_map_iter(|chunk| {
@@ -215,7 +250,7 @@ impl HarmonicFit {
                     .iter()
                     .map(|c| {
                         basis.fill(c, &mut scratch, &mut values);
-                        combine(&values, coefficients)
+                        combine(&values[..coefficients.len()], coefficients)
                     })
                     .collect::<Vec<_>>()
             })
@@ -232,7 +267,7 @@ impl HarmonicFit {
         cap_points: &[[f64; 3]],
         original: &[[f64; 3]],
     ) -> Result<Vec<OrderError>, HarmonicsError> {
-        let fits = fit_all_orders(cap_points, original, self.z_star, self.order)?;
+        let fits = fit_all_orders_in(self.basis, cap_points, original, self.z_star, self.order)?;
         order_errors(&fits, cap_points, original)
     }
 }
@@ -258,16 +293,22 @@ pub fn order_errors(
     }
     let z_star = first.z_star;
     for f in fits {
-        f.basis()?;
+        f.check()?;
         if f.z_star.to_bits() != z_star.to_bits() {
             return Err(HarmonicsError::MixedZStar {
                 first: z_star,
                 other: f.z_star,
             });
         }
+        if f.basis != first.basis {
+            return Err(HarmonicsError::WrongBasis {
+                expected: first.basis.name(),
+                found: f.basis.name(),
+            });
+        }
     }
     let top = fits.iter().map(|f| f.order).max().unwrap_or(0);
-    let basis = CapBasis::new(z_star, top)?;
+    let basis = HarmonicBasis::new(first.basis, z_star, top)?;
     let coords = coordinates(&basis, cap_points)?;
     let orders = fits.len();
     // distances[i * orders + j]: distance of point i under fit j.
@@ -320,7 +361,7 @@ pub fn order_errors(
 }
 
 /// Checked coordinates of every point (first bad point reported).
-fn coordinates(basis: &CapBasis, cap_points: &[[f64; 3]]) -> Result<Vec<CapCoordinates>, HarmonicsError> {
+pub(crate) fn coordinates(basis: &HarmonicBasis, cap_points: &[[f64; 3]]) -> Result<Vec<BasisPoint>, HarmonicsError> {
     cap_points
         .iter()
         .enumerate()
@@ -329,7 +370,7 @@ fn coordinates(basis: &CapBasis, cap_points: &[[f64; 3]]) -> Result<Vec<CapCoord
 }
 
 /// The `k x p` matrix of the basis at the points, filled in parallel by row blocks.
-fn design_matrix(basis: &CapBasis, coords: &[CapCoordinates]) -> Mat<f64> {
+fn design_matrix(basis: &HarmonicBasis, coords: &[BasisPoint]) -> Mat<f64> {
     let p = basis.len();
     let mut design = Mat::<f64>::zeros(coords.len(), p);
     design
@@ -362,7 +403,7 @@ fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
-fn bounding_box_diagonal(points: &[[f64; 3]]) -> f64 {
+pub(crate) fn bounding_box_diagonal(points: &[[f64; 3]]) -> f64 {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for p in points {
         for d in 0..3 {

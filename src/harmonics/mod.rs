@@ -5,6 +5,12 @@
 //! ```text
 //! legendre   : Pbar_n^m(x), fully normalized associated Legendre functions    (before Eq. 22)
 //! basis      : A_n^m on the cap, q1 = 2/(1-Z*), q2 = -(1+Z*)/(1-Z*)          (Eq. 22-25)
+//! kind       : BasisKind: adaptive harmonics (default) or spherical cap harmonics
+//! cap_legendre: non-integer degree Legendre functions on the cap (Rayleigh-Ritz)
+//! scha       : spherical cap harmonics, Neumann / Dirichlet / mixed rim condition
+//! any_basis  : HarmonicBasis, either basis behind one type for fit and reconstruction
+//! resample   : the reconstruction on a uniform cap mesh of any size (a smooth remesh)
+//! cohort     : groups of aspect ratios compared by Welch's t-test (the paper's cohort study)
 //! fit        : C = argmin |A C - V| by Householder QR, all orders at once     (Eq. 26-28)
 //! shape      : aspect ratio sigma_1 / sigma_3 of the order-1 representation    (Eq. 29)
 //! quadrature : Gauss-Legendre rules, to integrate over the cap in cos(theta)
@@ -29,18 +35,29 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod any_basis;
 pub mod basis;
+pub mod cap_legendre;
+pub mod cohort;
 pub mod error;
 pub mod fit;
 pub mod legendre;
 pub mod pipeline;
+pub mod kind;
 pub mod quadrature;
+pub mod resample;
+pub mod scha;
 pub mod shape;
 
 pub use basis::{basis_degree, basis_index, basis_len, CapBasis};
 pub use error::HarmonicsError;
-pub use fit::{fit, fit_all_orders, order_errors, HarmonicFit, OrderError};
+pub use any_basis::HarmonicBasis;
+pub use cohort::{compare_groups, welch_t_test, CohortError, GroupComparison, GroupSummary, WelchTest};
+pub use fit::{fit, fit_all_orders, fit_all_orders_in, fit_in, order_errors, HarmonicFit, OrderError};
+pub use kind::{BasisKind, CapBoundary};
+pub use resample::resample;
+pub use scha::SchaBasis;
 pub use pipeline::{analyze, analyze_map, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
 pub use legendre::{associated_legendre, normalized_legendre, NormalizedLegendre};
 pub use quadrature::gauss_legendre;
-pub use shape::{aspect_ratio, order_one_ellipsoid, AspectRatio, OrderOneEllipsoid};
+pub use shape::{aspect_ratio, aspect_ratio_in, order_one_ellipsoid, AspectRatio, OrderOneEllipsoid};

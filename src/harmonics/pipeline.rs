@@ -10,15 +10,21 @@
 //!   -> aspect_ratio, order_one_ellipsoid -> sigma_1 / sigma_3 of the order-1 representation
 //! ```
 //!
+//! The basis is [`HarmonicsOptions::basis`]: the paper's adaptive harmonics (default) or the
+//! spherical cap harmonics ([`super::scha`]); with [`HarmonicsOptions::resample_faces`] the
+//! order-`N` surface is also evaluated on a uniform cap mesh ([`super::resample`]).
+//!
 //! [`analyze`] does all of it; [`analyze_map`] starts from a parameterization already computed
 //! (the CLI uses it to also write the cap positions, which the coefficients need to be
 //! evaluated). Progress is reported with [`Stage::Harmonics`] after the parameterization's own
 //! stages; a `Break` cancels with [`Error::Cancelled`].
 //!
-//! Every `m > 0` basis function vanishes on the cap's boundary circle `Z = Z*` (see
-//! [`super::basis`]), so in the reconstruction of an open surface the whole boundary loop
-//! collapses to one point, at every order; the maximum error therefore stays near the size of
-//! the boundary loop while the mean error falls with `N`.
+//! With the adaptive harmonics every `m > 0` basis function vanishes on the cap's boundary
+//! circle `Z = Z*` (see [`super::basis`]), so in the reconstruction of an open surface the whole
+//! boundary loop collapses to one point, at every order; the maximum error therefore stays near
+//! the size of the boundary loop while the mean error falls with `N`. The spherical cap
+//! harmonics (Neumann or mixed rim condition) keep the loop; the report's
+//! `boundary_max_relative` measures it.
 //!
 //! Vertices used by no face have no cap position: they are left out of the fit and of the
 //! errors and keep their input position in the reconstruction.
@@ -28,9 +34,12 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::basis::basis_len;
-use super::fit::{fit, fit_all_orders, order_errors, HarmonicFit, OrderError, MAX_DESIGN_ENTRIES};
+use super::cap_legendre::MAX_CAP_ORDER;
+use super::fit::{fit_all_orders_in, fit_in, order_errors, HarmonicFit, OrderError, MAX_DESIGN_ENTRIES};
+use super::kind::BasisKind;
 use super::legendre::MAX_ORDER;
-use super::shape::{aspect_ratio, order_one_ellipsoid};
+use super::resample::resample;
+use super::shape::{aspect_ratio_in, order_one_ellipsoid};
 use super::HarmonicsError;
 use crate::cap::CapMap;
 use crate::param::{parameterize, ParamOptions, ParamReport};
@@ -50,6 +59,12 @@ pub struct HarmonicsOptions {
     /// Parameterization options. Default: the adaptive cap ([`ParamOptions::default`]); the
     /// planar disk domain is refused (the harmonics live on a spherical cap).
     pub param: ParamOptions,
+    /// The basis. Default [`BasisKind::Adaptive`] (the paper's); the spherical cap harmonics
+    /// accept orders up to 100.
+    pub basis: BasisKind,
+    /// Also evaluate the order-`N` surface on a uniform cap mesh of about this many faces
+    /// ([`HarmonicsOutput::resampled`]). Default `None`.
+    pub resample_faces: Option<usize>,
 }
 
 impl Default for HarmonicsOptions {
@@ -57,6 +72,8 @@ impl Default for HarmonicsOptions {
         Self {
             order: DEFAULT_ORDER,
             param: ParamOptions::default(),
+            basis: BasisKind::Adaptive,
+            resample_faces: None,
         }
     }
 }
@@ -67,11 +84,31 @@ impl HarmonicsOptions {
         self.order = order;
         self
     }
+
+    /// Set the parameterization options.
+    pub fn with_param(mut self, param: ParamOptions) -> Self {
+        self.param = param;
+        self
+    }
+
+    /// Set the basis.
+    pub fn with_basis(mut self, basis: BasisKind) -> Self {
+        self.basis = basis;
+        self
+    }
+
+    /// Set (or clear) the face count of the resampled reconstruction.
+    pub fn with_resample_faces(mut self, faces: Option<usize>) -> Self {
+        self.resample_faces = faces;
+        self
+    }
 }
 
 /// What [`analyze`] measured.
 #[derive(Debug, Clone, Serialize)]
 pub struct HarmonicsReport {
+    /// The basis of the fit.
+    pub basis: BasisKind,
     /// The cap's lower bound `Z*` the surface was fitted on.
     pub z_star: f64,
     /// The largest order `N`.
@@ -96,8 +133,17 @@ pub struct HarmonicsReport {
     /// exact ellipsoid over the stretched sphere ([`super::shape::order_one_ellipsoid`]); equal
     /// to `aspect_ratio` when `Z* = -1`.
     pub ellipsoid_aspect_ratio: f64,
-    /// Semi-axes of that ellipsoid, largest first.
+    /// Semi-axes of that ellipsoid, largest first. The ellipsoid exists for the adaptive
+    /// harmonics only: with the spherical cap harmonics these and `ellipsoid_aspect_ratio` are
+    /// NaN (JSON `null`).
     pub ellipsoid_semi_axes: [f64; 3],
+    /// Boundary vertices of the input (on edges used by one face); 0 for a closed surface.
+    pub boundary_vertices: usize,
+    /// Largest distance between a boundary vertex and its order-`N` reconstruction, divided by
+    /// the bounding-box diagonal of the fitted vertices; `null` for a closed surface.
+    pub boundary_max_relative: Option<f64>,
+    /// Faces of the resampled reconstruction, when one was asked for.
+    pub resampled_faces: Option<usize>,
     /// Seconds of the fit, errors and aspect ratios (after the parameterization).
     pub fit_seconds: f64,
     /// Seconds of the whole analysis, parameterization included.
@@ -113,11 +159,14 @@ pub struct HarmonicsOutput {
     pub reconstructed: TriMesh,
     /// The order-`N` coefficients (evaluate them at the cap positions of the parameterization).
     pub fit: HarmonicFit,
+    /// The order-`N` surface on a uniform cap mesh, when [`HarmonicsOptions::resample_faces`]
+    /// was set.
+    pub resampled: Option<TriMesh>,
     /// What was measured.
     pub report: HarmonicsReport,
 }
 
-/// Parameterize `mesh` with `options.param`, fit it with the adaptive harmonics up to
+/// Parameterize `mesh` with `options.param`, fit it with the basis `options.basis` up to
 /// `options.order`, reconstruct it and measure the errors and the aspect ratio.
 ///
 /// The order and the vertex count are checked before the (expensive) parameterization.
@@ -125,18 +174,25 @@ pub struct HarmonicsOutput {
 /// The work runs on a worker thread of rayon's pool; `progress` is called on this thread
 /// (see `crate::pool`).
 pub fn analyze(mesh: &TriMesh, options: &HarmonicsOptions, progress: &dyn Progress) -> Result<HarmonicsOutput, Error> {
-    check_request(mesh, options.order)?;
+    check_request(mesh, options)?;
     crate::pool::on_pool(progress, |progress| {
         let map = parameterize(mesh, &options.param, progress)?;
-        analyze_map(mesh, &map, options.order, progress)
+        analyze_map(mesh, &map, options, progress)
     })
 }
 
 /// As [`analyze`], from the parameterization `map` of `mesh` (its `cap` holds one position per
-/// vertex of `mesh`). `seconds` in the report adds the parameterization's own time.
-pub fn analyze_map(mesh: &TriMesh, map: &CapMap, order: usize, progress: &dyn Progress) -> Result<HarmonicsOutput, Error> {
+/// vertex of `mesh`); `options.param` is not used. `seconds` in the report adds the
+/// parameterization's own time.
+pub fn analyze_map(
+    mesh: &TriMesh,
+    map: &CapMap,
+    options: &HarmonicsOptions,
+    progress: &dyn Progress,
+) -> Result<HarmonicsOutput, Error> {
     let start = Instant::now();
-    check_request(mesh, order)?;
+    check_request(mesh, options)?;
+    let (order, kind) = (options.order, options.basis);
     let z_star = map.report.z_star.ok_or_else(|| {
         Error::InvalidOption(
             "adaptive harmonics need a spherical cap domain (adaptive, hemisphere, sphere or radius=R), not the planar disk"
@@ -155,7 +211,7 @@ pub fn analyze_map(mesh: &TriMesh, map: &CapMap, order: usize, progress: &dyn Pr
     let values: Vec<[f64; 3]> = used.iter().map(|&v| mesh.vertices[v]).collect();
 
     progress::check(progress, Stage::Harmonics, 0.0, &format!("fitting orders 0..={order}"))?;
-    let fits = fit_all_orders(&cap, &values, z_star, order)?;
+    let fits = fit_all_orders_in(kind, &cap, &values, z_star, order)?;
     progress::check(progress, Stage::Harmonics, 0.5, "reconstruction errors")?;
     let errors_by_order = order_errors(&fits, &cap, &values)?;
     let top = fits.last().cloned().ok_or(HarmonicsError::TooFewPoints {
@@ -166,24 +222,42 @@ pub fn analyze_map(mesh: &TriMesh, map: &CapMap, order: usize, progress: &dyn Pr
     let positions = top.reconstruct(&cap, order)?;
 
     progress::check(progress, Stage::Harmonics, 0.8, "order-1 aspect ratio")?;
-    let (ratio, singular_values) = match aspect_ratio(&cap, &values, z_star) {
+    let (ratio, singular_values) = match aspect_ratio_in(kind, &cap, &values, z_star) {
         Ok(a) => (a.ratio, a.singular_values),
         Err(HarmonicsError::DegenerateShape { singular_values }) => (f64::INFINITY, singular_values),
         Err(e) => return Err(e.into()),
     };
-    let order_one = match fits.get(1) {
-        Some(f) => f.clone(),
-        None => fit(&cap, &values, z_star, 1)?,
+    let (ellipsoid_aspect_ratio, ellipsoid_semi_axes) = if kind == BasisKind::Adaptive {
+        let order_one = match fits.get(1) {
+            Some(f) => f.clone(),
+            None => fit_in(kind, &cap, &values, z_star, 1)?,
+        };
+        let ellipsoid = order_one_ellipsoid(&order_one)?;
+        (ellipsoid.aspect_ratio(), ellipsoid.semi_axes)
+    } else {
+        (f64::NAN, [f64::NAN; 3])
     };
-    let ellipsoid = order_one_ellipsoid(&order_one)?;
 
     let mut vertices = mesh.vertices.clone();
     for (&v, p) in used.iter().zip(positions) {
         vertices[v] = p;
     }
+    let boundary = boundary_vertices(mesh);
+    let diagonal = super::fit::bounding_box_diagonal(&values);
+    let boundary_max_relative = (!boundary.is_empty() && diagonal > 0.0).then(|| {
+        boundary.iter().map(|&v| distance(vertices[v], mesh.vertices[v])).fold(0.0f64, f64::max) / diagonal
+    });
+    let resampled = match options.resample_faces {
+        Some(faces) => {
+            progress::check(progress, Stage::Harmonics, 0.9, "resampling on a cap mesh")?;
+            Some(resample(&top, faces)?)
+        }
+        None => None,
+    };
     progress::check(progress, Stage::Harmonics, 1.0, "done")?;
     let fit_seconds = start.elapsed().as_secs_f64();
     let report = HarmonicsReport {
+        basis: kind,
         z_star,
         order,
         vertices: mesh.n_vertices(),
@@ -192,8 +266,11 @@ pub fn analyze_map(mesh: &TriMesh, map: &CapMap, order: usize, progress: &dyn Pr
         errors_by_order,
         aspect_ratio: ratio,
         singular_values,
-        ellipsoid_aspect_ratio: ellipsoid.aspect_ratio(),
-        ellipsoid_semi_axes: ellipsoid.semi_axes,
+        ellipsoid_aspect_ratio,
+        ellipsoid_semi_axes,
+        boundary_vertices: boundary.len(),
+        boundary_max_relative,
+        resampled_faces: resampled.as_ref().map(TriMesh::n_faces),
         fit_seconds,
         seconds: map.report.seconds + fit_seconds,
         param: map.report.clone(),
@@ -201,15 +278,28 @@ pub fn analyze_map(mesh: &TriMesh, map: &CapMap, order: usize, progress: &dyn Pr
     Ok(HarmonicsOutput {
         reconstructed: TriMesh::new(vertices, mesh.faces.clone()),
         fit: top,
+        resampled,
         report,
     })
 }
 
-/// The checks [`analyze`] makes before parameterizing: the order is at most 500, the mesh has
-/// at least `(order + 1)^2` vertices used by faces and the design matrix fits in memory.
-pub fn check_request(mesh: &TriMesh, order: usize) -> Result<(), HarmonicsError> {
-    if order > MAX_ORDER {
-        return Err(HarmonicsError::OrderTooLarge { order, max: MAX_ORDER });
+/// The checks [`analyze`] makes before parameterizing: the order is at most 500 (100 for the
+/// spherical cap harmonics), the mesh has at least `(order + 1)^2` vertices used by faces, the
+/// design matrix fits in memory and the resampling face count is valid.
+pub fn check_request(mesh: &TriMesh, options: &HarmonicsOptions) -> Result<(), HarmonicsError> {
+    let order = options.order;
+    let max = match options.basis {
+        BasisKind::Adaptive => MAX_ORDER,
+        BasisKind::SphericalCap(_) => MAX_CAP_ORDER,
+    };
+    if order > max {
+        return Err(HarmonicsError::OrderTooLarge { order, max });
+    }
+    if let Some(faces) = options.resample_faces {
+        let max = super::resample::MAX_RESAMPLE_FACES;
+        if faces == 0 || faces > max {
+            return Err(HarmonicsError::InvalidResample { faces, max });
+        }
     }
     let points = referenced(mesh).len();
     let basis = basis_len(order);
@@ -224,6 +314,33 @@ pub fn check_request(mesh: &TriMesh, order: usize) -> Result<(), HarmonicsError>
         });
     }
     Ok(())
+}
+
+/// Vertices on an edge used by exactly one face, ascending.
+fn boundary_vertices(mesh: &TriMesh) -> Vec<usize> {
+    let mut edges = std::collections::HashMap::new();
+    for f in &mesh.faces {
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            *edges.entry((a.min(b), a.max(b))).or_insert(0usize) += 1;
+        }
+    }
+    let n = mesh.n_vertices();
+    let mut on = vec![false; n];
+    for ((a, b), count) in edges {
+        if count == 1 {
+            for v in [a as usize, b as usize] {
+                if let Some(o) = on.get_mut(v) {
+                    *o = true;
+                }
+            }
+        }
+    }
+    (0..n).filter(|&v| on[v]).collect()
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// Indices of the vertices some face uses (out-of-range indices ignored), ascending.

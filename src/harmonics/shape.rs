@@ -33,13 +33,17 @@
 //! ```
 //!
 //! whose semi-axes are the singular values of that matrix. This is closed form, needs no second
-//! least-squares problem, and coincides with [`aspect_ratio`] for `Z* = -1`.
+//! least-squares problem, and coincides with [`aspect_ratio`] for `Z* = -1`. It exists for the
+//! adaptive harmonics only (the spherical cap harmonics' order-1 functions are not linear in a
+//! stretched sphere); [`aspect_ratio_in`] gives the paper's ratio in either basis.
 
 use faer::linalg::solvers::{Qr, SolveLstsq};
 use faer::Mat;
 use serde::{Deserialize, Serialize};
 
-use super::fit::{fit, HarmonicFit};
+use super::any_basis::HarmonicBasis;
+use super::fit::{fit_in, HarmonicFit};
+use super::kind::BasisKind;
 use super::HarmonicsError;
 
 /// The paper's aspect ratio of the order-1 representation.
@@ -76,7 +80,17 @@ impl OrderOneEllipsoid {
 /// Aspect ratio `sigma_1 / sigma_3` of the order-1 representation of `values` (the vertices) at
 /// `cap_points` on `Z >= z_star`, as described in the module docs.
 pub fn aspect_ratio(cap_points: &[[f64; 3]], values: &[[f64; 3]], z_star: f64) -> Result<AspectRatio, HarmonicsError> {
-    let order_one = fit(cap_points, values, z_star, 1)?;
+    aspect_ratio_in(BasisKind::Adaptive, cap_points, values, z_star)
+}
+
+/// As [`aspect_ratio`], with the order-1 representation in the basis `kind`.
+pub fn aspect_ratio_in(
+    kind: BasisKind,
+    cap_points: &[[f64; 3]],
+    values: &[[f64; 3]],
+    z_star: f64,
+) -> Result<AspectRatio, HarmonicsError> {
+    let order_one = fit_in(kind, cap_points, values, z_star, 1)?;
     let y = order_one.reconstruct(cap_points, 1)?;
     let k = cap_points.len();
     let unit = |i: usize| {
@@ -112,9 +126,15 @@ pub fn aspect_ratio(cap_points: &[[f64; 3]], values: &[[f64; 3]], z_star: f64) -
 }
 
 /// The exact ellipsoid of the order-1 terms of `fit` (module docs); `fit.order` must be at
-/// least 1. For the least-squares order-1 representation pass a fit made at order 1.
+/// least 1. For the least-squares order-1 representation pass a fit made at order 1. Adaptive
+/// harmonics only ([`HarmonicsError::WrongBasis`] otherwise).
 pub fn order_one_ellipsoid(fit: &HarmonicFit) -> Result<OrderOneEllipsoid, HarmonicsError> {
-    let basis = fit.basis()?;
+    let basis = match fit.basis()? {
+        HarmonicBasis::Adaptive(b) => b,
+        HarmonicBasis::SphericalCap(_) => {
+            return Err(HarmonicsError::WrongBasis { expected: "ah", found: fit.basis.name() });
+        }
+    };
     if fit.order < 1 {
         return Err(HarmonicsError::InvalidFit {
             order: fit.order,

@@ -10,6 +10,7 @@ macro_rules! outln {
     };
 }
 
+mod basis_args;
 mod cli_progress;
 mod failure;
 mod figures_arg;
@@ -19,7 +20,9 @@ mod map_args;
 mod outputs;
 mod shape_cmd;
 mod shape_csv;
+mod shape_groups;
 
+use basis_args::BasisArgs;
 use capmesh::cap::Domain;
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io;
@@ -164,6 +167,12 @@ enum Command {
         /// Exit 0 with a poor map (mean |d_area| above 0.3 on the adaptive cap) instead of 3.
         #[arg(long)]
         allow_poor_map: bool,
+        #[command(flatten)]
+        basis: BasisArgs,
+        /// Write the reconstruction on a uniform cap mesh of about N faces to -o (a smooth
+        /// remesh) instead of on the input's connectivity.
+        #[arg(long, value_name = "N")]
+        resample_faces: Option<usize>,
     },
     /// Shape analysis of many meshes in parallel: Z* and the order-1 (N = 1) aspect ratio
     /// sigma1/sigma3 of each, one CSV row per mesh, sorted by file. Failed meshes get a
@@ -194,6 +203,13 @@ enum Command {
         /// Exit 0 when rows are poor (quality column) instead of 3.
         #[arg(long)]
         allow_poor_map: bool,
+        #[command(flatten)]
+        basis: BasisArgs,
+        /// CSV file of `file,group` rows: compare the aspect ratios of the groups (Welch's
+        /// t-test, effect size, means and spreads) on stdout and in NAME.groups.json and
+        /// NAME.groups.csv next to --csv NAME.csv.
+        #[arg(long, value_name = "GROUPS_CSV")]
+        groups: Option<PathBuf>,
     },
     /// Remeshing metrics of any remeshed surface against its original: d_face, surface
     /// distances (mean and one-sided Hausdorff), angles, valence, self-intersecting faces.
@@ -320,20 +336,26 @@ fn print_quality(q: &capmesh::metrics::RemeshMetrics) -> Result<(), String> {
 
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
-        Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain, figures, allow_poor_map } => harmonics_cmd::run(harmonics_cmd::HarmonicsArgs {
-            input,
-            order,
-            output,
-            coefficients,
-            report,
-            cap_mesh,
-            domain,
-            figures,
-            allow_poor_map,
-            quiet: cli.quiet,
-        }),
-        Command::Shape { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map } => {
-            shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, quiet: cli.quiet })
+        Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain, figures, allow_poor_map, basis, resample_faces } => {
+            let basis = basis.kind()?;
+            harmonics_cmd::run(harmonics_cmd::HarmonicsArgs {
+                input,
+                order,
+                output,
+                coefficients,
+                report,
+                cap_mesh,
+                domain,
+                figures,
+                allow_poor_map,
+                basis,
+                resample_faces,
+                quiet: cli.quiet,
+            })
+        }
+        Command::Shape { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, basis, groups } => {
+            let basis = basis.kind()?;
+            shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, basis, groups, quiet: cli.quiet })
         }
         Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, sizing, figures, map } => {
             refuse_overwrite(&input, &output)?;

@@ -10,13 +10,15 @@
 //! thread, so the rows do not depend on `--jobs` or `--threads` either). A mesh that fails gets a
 //! `failed` row with its error (`--resume --retry-failed` analyses it again); the command then
 //! exits 1, after writing the CSV; rows whose map is poor exit 3 unless `--allow-poor-map`.
+//! `--basis scha` uses the spherical cap harmonics; `--groups` adds the cohort comparison
+//! ([`crate::shape_groups`]).
 
 use crate::failure::Failure;
 use crate::interrupt;
 use crate::read;
 use crate::shape_csv::{self, EarlierRow, Identity, ResumeBy, HEADER};
 use capmesh::cap::Domain;
-use capmesh::harmonics::{analyze, HarmonicsOptions};
+use capmesh::harmonics::{analyze, BasisKind, HarmonicsOptions};
 use capmesh::io::Format;
 use capmesh::param::ParamOptions;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -36,6 +38,8 @@ pub struct ShapeArgs {
     pub resume: Option<ResumeBy>,
     pub retry_failed: bool,
     pub allow_poor_map: bool,
+    pub basis: BasisKind,
+    pub groups: Option<PathBuf>,
     pub quiet: bool,
 }
 
@@ -78,6 +82,16 @@ pub fn run(args: ShapeArgs) -> Result<(), Failure> {
             }
         }
     }
+
+    // The groups file is checked before any mesh is analysed.
+    let groups = match &args.groups {
+        Some(path) => {
+            let rows = crate::shape_groups::read(path)?;
+            let matched = crate::shape_groups::match_files(&rows, &files, path)?;
+            Some((rows, matched))
+        }
+        None => None,
+    };
 
     // The rows of an earlier run that can be kept.
     let mut earlier: HashMap<String, EarlierRow> = HashMap::new();
@@ -122,7 +136,7 @@ pub fn run(args: ShapeArgs) -> Result<(), Failure> {
     let jobs = args.jobs.unwrap_or_else(rayon::current_num_threads).max(1);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build().map_err(|e| format!("cannot start worker threads: {e}"))?;
     let bar = counter(todo.len(), args.quiet);
-    let options = HarmonicsOptions { order: 1, param: ParamOptions::default().with_domain(args.domain) };
+    let options = HarmonicsOptions::default().with_order(1).with_param(ParamOptions::default().with_domain(args.domain)).with_basis(args.basis);
     let journal_failed = || journal.lock().map_or(true, |j| j.error.is_some());
     let new_rows: Vec<Row> = pool.install(|| {
         todo.par_iter()
@@ -191,6 +205,16 @@ pub fn run(args: ShapeArgs) -> Result<(), Failure> {
     capmesh::io::atomic::commit_all(vec![staged])?;
     if let Err(e) = std::fs::remove_file(&partial) {
         eprintln!("warning: cannot remove {}: {e}; delete it (the CSV is complete)", partial.display());
+    }
+
+    if let Some((assignments, matched)) = &groups {
+        // Each file's aspect ratio from its row (kept or new), in the order of `files`.
+        let by_file: HashMap<&str, &Row> = rows.iter().map(|r| (r.file.as_str(), r)).collect();
+        let ratios: Vec<Option<f64>> = files
+            .iter()
+            .map(|f| by_file.get(f.display().to_string().as_str()).filter(|r| r.error.is_none()).and_then(|r| shape_csv::aspect_ratio_of(&r.line)))
+            .collect();
+        crate::shape_groups::compare(assignments, matched, &ratios, &files, &args.csv)?;
     }
 
     let failed: Vec<&Row> = rows.iter().filter(|r| r.error.is_some()).collect();

@@ -129,6 +129,12 @@ pub struct EarlierRow {
     pub id: Identity,
 }
 
+/// The `aspect_ratio` column of a row (`None` when empty or not a number).
+pub fn aspect_ratio_of(line: &str) -> Option<f64> {
+    let col = HEADER.split(',').position(|c| c == "aspect_ratio")?;
+    fields(line).get(col)?.parse::<f64>().ok().filter(|x| x.is_finite())
+}
+
 /// Add the rows of the CSV at `path` (absent: none) to `rows`, by file, replacing rows of
 /// the same file. Returns the number of lines ignored (cut short by a kill, or malformed);
 /// a file with another header is refused (an older capmesh or another table).
