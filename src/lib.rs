@@ -52,7 +52,7 @@ pub mod refine;
 pub mod remesh;
 
 // The entry points and their options and reports, flat at the root.
-pub use cap::{CapMap, Domain};
+pub use cap::{CapMap, Domain, InverseMap, InverseMapError, InverseOptions, SurfacePoint};
 pub use error::{Error, Result};
 pub use harmonics::{analyze, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
 pub use io::{

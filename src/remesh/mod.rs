@@ -16,6 +16,7 @@ use crate::mesh::geometry::triangle_area;
 use crate::mesh::{SurfaceKind, TriMesh};
 use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// Which cap mesh to pull back.
@@ -195,6 +196,8 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         CapGrid::Uniform { faces } => grid::uniform_cap(z_star, faces.max(1)),
         CapGrid::LatLong { rings, sectors } => grid::lat_long(z_star, rings, sectors),
     };
+    // The inverse map, its point location built once for the pull-back and the shape stage.
+    let inverse = map.inverse(mesh)?;
     let no_face = || Error::Unsupported("the parameterized mesh has no face to pull back from".into());
     let top_faces: Vec<[u32; 3]> = (0..mesh.n_faces()).filter(|f| !map.bottom_faces.contains(f)).map(|f| mesh.faces[f]).collect();
     // The rim (the cap grid's last ring) and the bottom stay where the pull-back put them.
@@ -219,7 +222,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         let mut planar: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
         let (corners, rim_radius) = polygon_of((0..mesh.n_vertices() as u32).filter(|&v| input_boundary[v as usize]), &map.plane);
         pullback::rim_band_into_polygon(&mut planar, &corners, rim_radius);
-        let positions = pullback::pull_back_planar(mesh, &map.plane, &planar).ok_or_else(no_face)?;
+        let positions = planar.par_iter().map(|&q| inverse.locate_plane(q).map(|p| p.position)).collect::<Option<Vec<_>>>().ok_or_else(no_face)?;
         let n = cap.vertices.len();
         (cap, planar, positions, n)
     };
@@ -251,7 +254,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     }
     if shaped {
         progress::check(progress, Stage::Remesh, 0.3, "shaping the triangles")?;
-        let lift = shape::state::SurfaceLift::new(mesh, &map.plane, &top_faces);
+        let lift = shape::state::SurfaceLift::new(&inverse);
         let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &input_boundary) };
         let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed };
         let (new_faces, stays, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
