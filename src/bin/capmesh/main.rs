@@ -68,6 +68,10 @@ enum Command {
         /// Write a JSON report here.
         #[arg(long)]
         report: Option<PathBuf>,
+        /// Also write the input mesh with the map as texture coordinates (.obj: vt, .ply:
+        /// texture_u/texture_v; the disk scaled into [0,1]^2).
+        #[arg(long, value_name = "OUT")]
+        uv: Option<PathBuf>,
         /// Write figures (PNG, SVG) and an index.md linking them into this directory.
         #[arg(long, value_name = "DIR")]
         figures: Option<PathBuf>,
@@ -458,12 +462,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Param { input, output, domain, report, figures, map } => {
+        Command::Param { input, output, domain, report, uv, figures, map } => {
             refuse_overwrite(&input, &output)?;
-            if let Some(r) = &report {
-                refuse_overwrite(&input, r)?;
-                outputs::refuse_duplicates(&[&output, r])?;
+            let extra: Vec<&Path> = report.iter().chain(uv.iter()).map(|p| p.as_path()).collect();
+            for p in &extra {
+                refuse_overwrite(&input, p)?;
             }
+            outputs::refuse_duplicates(&[&[output.as_path()][..], &extra].concat())?;
             let m = read(&input)?;
             let bar = cli_progress::Bar::new(cli.quiet);
             let mut options = ParamOptions::default().with_domain(domain);
@@ -471,6 +476,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let cap = parameterize(&m, &options, &bar).map_err(|e| failure::of_pipeline("param", &input, bar.stage(), e))?;
             bar.finish();
             let mut staged = vec![outputs::stage_mesh(&output, &cap.cap_mesh(&m))?];
+            if let Some(path) = &uv {
+                let extra = capmesh::io::VertexProperties::default().with_uv(cap.uv());
+                staged.push(capmesh::io::stage_mesh_with_properties(path, &m, &extra, &Default::default())?);
+            }
             let r = &cap.report;
             outln!(
                 "{}: {} onto {}: Z* = {}, mean |d_area| = {:.4}, mean |d_angle| = {:.4} rad, flipped faces = {}, {:.2} s",
