@@ -63,7 +63,8 @@ pub use mesh::TriMesh;
 pub use param::{parameterize, MapQuality, ParamOptions, ParamReport};
 pub use progress::{NoProgress, Progress, Stage};
 pub use remesh::shape::{ShapeOptions, ShapeReport};
-pub use remesh::{remesh, CapGrid, Optimize, RemeshOptions, RemeshReport};
+pub use remesh::transfer::carry_attribute;
+pub use remesh::{remesh, remesh_located, CapGrid, Optimize, RemeshOptions, RemeshReport};
 
 /// The README's examples, compiled as doc tests.
 #[cfg(doctest)]

@@ -319,6 +319,20 @@ pub fn write_mesh_with_properties(path: &Path, mesh: &TriMesh, extra: &VertexPro
     commit(path, stage_mesh_with_properties(path, mesh, extra, options)?)
 }
 
+/// Stage `attribute` as a GIFTI data file at `path` (`.shape.gii` for values, `.label.gii`
+/// for labels by convention; `.gz` compresses), written atomically like the meshes.
+pub fn stage_vertex_attribute(path: &Path, attribute: &VertexAttribute, options: &GiftiOptions) -> Result<atomic::StagedFile, WriteError> {
+    atomic::stage(path, |file| {
+        if is_gzip(path) {
+            let mut gz = flate2::write::GzEncoder::new(BufWriter::new(file), flate2::Compression::fast());
+            gifti::write_attribute(&mut gz, attribute, options)?;
+            gz.finish()?.flush()
+        } else {
+            gifti::write_attribute(file, attribute, options)
+        }
+    })
+}
+
 /// Write ASCII PLY (whatever the extension; gzip-compressed when it ends in `.gz`).
 pub fn write_ply_ascii(path: &Path, mesh: &TriMesh) -> Result<(), WriteError> {
     commit(path, stage_with(path, mesh, Format::Ply, &WriteOptions::default().with_ply_ascii(true))?)

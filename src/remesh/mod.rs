@@ -6,11 +6,12 @@ pub mod grid;
 pub mod locate;
 pub mod pullback;
 pub mod shape;
+pub mod transfer;
 
 use crate::refine::area_refine::AreaRefineReport;
 use crate::param::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
-use crate::cap::stereographic;
+use crate::cap::{stereographic, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
 use crate::mesh::geometry::triangle_area;
 use crate::mesh::{SurfaceKind, TriMesh};
@@ -176,11 +177,18 @@ const RIM_TOLERANCE: f64 = 1e-6;
 /// The work runs on a worker thread of rayon's pool; `progress` is called on this thread
 /// (see `crate::pool`).
 pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport), Error> {
-    crate::pool::on_pool(progress, |progress| remesh_here(mesh, options, progress))
+    crate::pool::on_pool(progress, |progress| remesh_here(mesh, options, progress, false)).map(|(m, r, _)| (m, r))
 }
 
-/// [`remesh`] on the current thread.
-fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport), Error> {
+/// [`remesh`], also returning each remesh vertex's point of the input surface (face and
+/// barycentric coordinates, through the inverse map): what [`transfer::carry_attribute`]
+/// carries per-vertex data with.
+pub fn remesh_located(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
+    crate::pool::on_pool(progress, |progress| remesh_here(mesh, options, progress, true))
+}
+
+/// [`remesh`] on the current thread; the surface points only when `locate`.
+fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let start = Instant::now();
     // Refused before the parameterization, which would be wasted.
     let asked = options.grid.approximate_faces();
@@ -279,6 +287,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     };
     let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &faces, &target, &fixed, &mut planar, &mut positions, sweeps);
     let equalize_seconds = t_eq.elapsed().as_secs_f64();
+    let points = if locate { transfer::surface_points(&inverse, &planar, &has_plane, &positions) } else { Vec::new() };
     let out = TriMesh::new(positions, faces);
     let t_metrics = Instant::now();
     let quality = remesh_metrics(mesh, &out);
@@ -295,5 +304,5 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         equalize_seconds,
         metrics_seconds,
     };
-    Ok((out, report))
+    Ok((out, report, points))
 }

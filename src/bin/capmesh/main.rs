@@ -10,6 +10,7 @@ macro_rules! outln {
     };
 }
 
+mod attributes_arg;
 mod cli_progress;
 mod failure;
 mod figures_arg;
@@ -23,7 +24,7 @@ mod shape_csv;
 use capmesh::cap::Domain;
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io;
-use capmesh::remesh::{remesh, CapGrid, RemeshOptions};
+use capmesh::remesh::{CapGrid, RemeshOptions};
 use capmesh::mesh;
 use clap::{Parser, Subcommand};
 use failure::Failure;
@@ -87,6 +88,10 @@ enum Command {
         /// Output mesh.
         #[arg(short, long)]
         output: PathBuf,
+        /// Carry a per-vertex data file (GIFTI .shape/.func/.label.gii, FreeSurfer curv) to
+        /// the remesh (repeatable): PLY vertex properties, or .gii files beside a GIFTI output.
+        #[arg(long, value_name = "PATH")]
+        attribute: Vec<PathBuf>,
         /// Target face count of the uniform cap mesh.
         #[arg(long, default_value_t = 5000, conflicts_with = "lat_long")]
         faces: usize,
@@ -335,7 +340,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Shape { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map } => {
             shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, quiet: cli.quiet })
         }
-        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, figures, map } => {
+        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, figures, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -343,16 +348,28 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             let t_read = std::time::Instant::now();
             let m = read(&input)?;
+            let attributes = attributes_arg::read_all(&attribute, &m, &output)?;
             let read_seconds = t_read.elapsed().as_secs_f64();
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
             let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample);
             let mut options = RemeshOptions { grid, area_equalization, optimize, shape, ..Default::default() };
             map.apply(&mut options.param);
-            let (out, rep) = remesh(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
+            let (out, rep, points) = capmesh::remesh_located(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
             bar.finish();
             let t_write = std::time::Instant::now();
-            let mut staged = vec![outputs::stage_mesh(&output, &out)?];
+            let carried: Vec<_> = attributes.iter().map(|a| capmesh::carry_attribute(&m, &points, a)).collect();
+            let mut staged = if carried.is_empty() || io::Format::from_path(&output) != Some(io::Format::Ply) {
+                vec![outputs::stage_mesh(&output, &out)?]
+            } else {
+                vec![io::stage_mesh_with_properties(&output, &out, &attributes_arg::ply_properties(&carried), &Default::default())?]
+            };
+            if !carried.is_empty() && io::Format::from_path(&output) == Some(io::Format::Gifti) {
+                for (path, file) in attributes_arg::stage_gifti(&output, &carried)? {
+                    refuse_overwrite(&input, &path)?;
+                    staged.push(file);
+                }
+            }
             let write_seconds = t_write.elapsed().as_secs_f64();
             outln!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
             warn_if_poor(&input, &rep.param);
