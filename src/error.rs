@@ -1,6 +1,7 @@
 //! The crate's error type: one variant per stage, each wrapping that stage's own error enum,
 //! so a user can tell "your mesh has two boundary loops" from "the solver did not converge".
 
+use crate::cap::InverseMapError;
 use crate::flatten::FlattenError;
 use crate::harmonics::HarmonicsError;
 use crate::io::{ReadError, WriteError};
@@ -30,6 +31,9 @@ pub enum Error {
     /// The adaptive harmonics fit failed.
     #[error(transparent)]
     Harmonics(#[from] HarmonicsError),
+    /// The inverse map could not be built or asked.
+    #[error(transparent)]
+    Inverse(#[from] InverseMapError),
     /// The input is valid but asks for something not supported.
     #[error("{0}")]
     Unsupported(String),

@@ -52,7 +52,7 @@ pub mod refine;
 pub mod remesh;
 
 // The entry points and their options and reports, flat at the root.
-pub use cap::{CapMap, Domain};
+pub use cap::{CapMap, Domain, InverseMap, InverseMapError, InverseOptions, SurfacePoint};
 pub use error::{Error, Result};
 pub use harmonics::{analyze, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
 pub use io::{
@@ -64,7 +64,8 @@ pub use param::{parameterize, MapQuality, ParamOptions, ParamReport};
 pub use progress::{NoProgress, Progress, Stage};
 pub use remesh::shape::{ShapeOptions, ShapeReport};
 pub use remesh::sizing::Sizing;
-pub use remesh::{remesh, CapGrid, Optimize, RemeshOptions, RemeshReport};
+pub use remesh::transfer::carry_attribute;
+pub use remesh::{remesh, remesh_located, CapGrid, Optimize, RemeshOptions, RemeshReport};
 
 /// The README's examples, compiled as doc tests.
 #[cfg(doctest)]

@@ -32,4 +32,14 @@ impl CapMap {
     pub fn cap_mesh(&self, mesh: &TriMesh) -> TriMesh {
         TriMesh::new(self.cap.clone(), mesh.faces.clone())
     }
+
+    /// The map as texture coordinates, one per input vertex: the planar disk (radius `r*`,
+    /// whose inverse stereographic image is the cap; the unit disk for the planar domain)
+    /// scaled into `[0, 1]^2`, its centre at `(0.5, 0.5)`. A closed surface's punctured quad
+    /// has its corners on the disk's rim.
+    pub fn uv(&self) -> Vec<[f64; 2]> {
+        let radius = self.report.r_star.unwrap_or_else(|| self.plane.iter().map(|p| p[0].hypot(p[1])).fold(0.0, f64::max));
+        let scale = if radius > 0.0 { 0.5 / radius } else { 0.0 };
+        self.plane.iter().map(|p| [(0.5 + scale * p[0]).clamp(0.0, 1.0), (0.5 + scale * p[1]).clamp(0.0, 1.0)]).collect()
+    }
 }

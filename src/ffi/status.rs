@@ -62,6 +62,7 @@ pub(crate) fn status_of(error: &Error) -> capmesh_v1_status {
         Error::Flatten(_) => S::CAPMESH_V1_NUMERICAL,
         Error::Transport(OmtError::Cancelled(_)) => S::CAPMESH_V1_CANCELLED,
         Error::Transport(_) => S::CAPMESH_V1_NUMERICAL,
+        Error::Inverse(_) => S::CAPMESH_V1_INVALID_ARGUMENT,
         Error::Unsupported(_) => S::CAPMESH_V1_UNSUPPORTED,
         Error::InvalidOption(_) => S::CAPMESH_V1_INVALID_ARGUMENT,
         Error::Cancelled(_) => S::CAPMESH_V1_CANCELLED,

@@ -26,6 +26,7 @@ mod off;
 mod ply;
 mod stl;
 mod text;
+mod vertex_properties;
 
 use std::fmt;
 use std::io::{BufWriter, Read, Write};
@@ -37,6 +38,7 @@ pub use attribute::{
 };
 pub use error::{Location, ReadError, WriteError};
 pub use gifti::{Endian, GiftiEncoding, GiftiFloat, GiftiOptions};
+pub use vertex_properties::VertexProperties;
 
 use crate::mesh::TriMesh;
 
@@ -301,6 +303,36 @@ pub fn stage_mesh_with(path: &Path, mesh: &TriMesh, options: &WriteOptions) -> R
     stage_with(path, mesh, format, options)
 }
 
+/// [`stage_mesh_with`] carrying per-vertex data: texture coordinates (OBJ `vt`, PLY
+/// `texture_u`/`texture_v`) and named float properties (PLY only); refused for the formats
+/// that cannot store what is given.
+pub fn stage_mesh_with_properties(path: &Path, mesh: &TriMesh, extra: &VertexProperties, options: &WriteOptions) -> Result<atomic::StagedFile, WriteError> {
+    let format = Format::from_path(path).ok_or_else(|| WriteError::UnknownFormat {
+        path: path.to_path_buf(),
+        extension: extension_of(path),
+    })?;
+    stage_with_properties(path, mesh, extra, format, options)
+}
+
+/// [`stage_mesh_with_properties`], committed.
+pub fn write_mesh_with_properties(path: &Path, mesh: &TriMesh, extra: &VertexProperties, options: &WriteOptions) -> Result<(), WriteError> {
+    commit(path, stage_mesh_with_properties(path, mesh, extra, options)?)
+}
+
+/// Stage `attribute` as a GIFTI data file at `path` (`.shape.gii` for values, `.label.gii`
+/// for labels by convention; `.gz` compresses), written atomically like the meshes.
+pub fn stage_vertex_attribute(path: &Path, attribute: &VertexAttribute, options: &GiftiOptions) -> Result<atomic::StagedFile, WriteError> {
+    atomic::stage(path, |file| {
+        if is_gzip(path) {
+            let mut gz = flate2::write::GzEncoder::new(BufWriter::new(file), flate2::Compression::fast());
+            gifti::write_attribute(&mut gz, attribute, options)?;
+            gz.finish()?.flush()
+        } else {
+            gifti::write_attribute(file, attribute, options)
+        }
+    })
+}
+
 /// Write ASCII PLY (whatever the extension; gzip-compressed when it ends in `.gz`).
 pub fn write_ply_ascii(path: &Path, mesh: &TriMesh) -> Result<(), WriteError> {
     commit(path, stage_with(path, mesh, Format::Ply, &WriteOptions::default().with_ply_ascii(true))?)
@@ -323,18 +355,18 @@ pub fn write_mesh_to_bytes_with(mesh: &TriMesh, format: Format, options: &WriteO
     let path = Path::new("<bytes>");
     check_writable(path, mesh, format, options)?;
     let mut out = Vec::new();
-    encode(&mut out, mesh, format, options).map_err(|source| WriteError::Io {
+    encode(&mut out, mesh, &VertexProperties::default(), format, options).map_err(|source| WriteError::Io {
         path: path.to_path_buf(),
         source,
     })?;
     Ok(out)
 }
 
-fn encode(w: &mut dyn Write, mesh: &TriMesh, format: Format, options: &WriteOptions) -> std::io::Result<()> {
+fn encode(w: &mut dyn Write, mesh: &TriMesh, extra: &VertexProperties, format: Format, options: &WriteOptions) -> std::io::Result<()> {
     match format {
-        Format::Obj => obj::write(w, mesh),
-        Format::Ply if options.ply_ascii => ply::write_ascii(w, mesh),
-        Format::Ply => ply::write_binary(w, mesh),
+        Format::Obj => obj::write(w, mesh, extra),
+        Format::Ply if options.ply_ascii => ply::write_ascii(w, mesh, extra),
+        Format::Ply => ply::write_binary(w, mesh, extra),
         Format::Off => off::write(w, mesh),
         Format::Stl => stl::write(w, mesh),
         Format::Gifti => gifti::write(w, mesh, &options.gifti),
@@ -343,17 +375,22 @@ fn encode(w: &mut dyn Write, mesh: &TriMesh, format: Format, options: &WriteOpti
 }
 
 fn stage_with(path: &Path, mesh: &TriMesh, format: Format, options: &WriteOptions) -> Result<atomic::StagedFile, WriteError> {
+    stage_with_properties(path, mesh, &VertexProperties::default(), format, options)
+}
+
+fn stage_with_properties(path: &Path, mesh: &TriMesh, extra: &VertexProperties, format: Format, options: &WriteOptions) -> Result<atomic::StagedFile, WriteError> {
     check_writable(path, mesh, format, options)?;
+    extra.check(path, mesh, format)?;
     atomic::stage(path, |file| {
         if is_gzip(path) {
             // Buffer in front of the encoder: the writers make many small writes.
             let gz = flate2::write::GzEncoder::new(file, flate2::Compression::fast());
             let mut buffered = BufWriter::with_capacity(1 << 20, gz);
-            encode(&mut buffered, mesh, format, options)?;
+            encode(&mut buffered, mesh, extra, format, options)?;
             buffered.into_inner().map_err(|e| e.into_error())?.finish()?;
             Ok(())
         } else {
-            encode(file, mesh, format, options)
+            encode(file, mesh, extra, format, options)
         }
     })
 }

@@ -9,6 +9,7 @@ use std::path::Path;
 use super::error::{Location, ReadError};
 use super::text::{parse_f64, parse_i64, show, strip_comment, tokens, Lines};
 use super::{fan, parse_error};
+use super::VertexProperties;
 use crate::mesh::TriMesh;
 
 /// Parse an OBJ file's bytes.
@@ -122,12 +123,23 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<TriMesh, ReadError> {
     Ok(TriMesh::new(vertices, faces))
 }
 
-/// Write OBJ (1-based indices). The mesh has been checked by the caller.
-pub(crate) fn write(w: &mut dyn Write, mesh: &TriMesh) -> std::io::Result<()> {
+/// Write OBJ (1-based indices), with a `vt` line per vertex and `f v/vt` faces when `extra`
+/// has texture coordinates. The mesh and `extra` have been checked by the caller.
+pub(crate) fn write(w: &mut dyn Write, mesh: &TriMesh, extra: &VertexProperties) -> std::io::Result<()> {
     writeln!(w, "# written by capmesh")?;
     writeln!(w, "# V={} F={}", mesh.n_vertices(), mesh.n_faces())?;
     for p in &mesh.vertices {
         writeln!(w, "v {:?} {:?} {:?}", p[0], p[1], p[2])?;
+    }
+    if let Some(uv) = &extra.uv {
+        for t in uv {
+            writeln!(w, "vt {:?} {:?}", t[0], t[1])?;
+        }
+        for f in &mesh.faces {
+            let [a, b, c] = f.map(|v| v + 1);
+            writeln!(w, "f {a}/{a} {b}/{b} {c}/{c}")?;
+        }
+        return Ok(());
     }
     for f in &mesh.faces {
         writeln!(w, "f {} {} {}", f[0] + 1, f[1] + 1, f[2] + 1)?;

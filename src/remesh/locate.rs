@@ -22,6 +22,8 @@ pub struct Location {
 /// Triangles per leaf at most.
 const LEAF: usize = 8;
 
+use std::borrow::Cow;
+
 /// Smallest barycentric coordinate of a point for [`Locator::locate_near`] to take its hint.
 const HINT_MARGIN: f64 = 1e-9;
 
@@ -40,9 +42,11 @@ struct Node {
 }
 
 /// Bounding-volume hierarchy over the triangles of a planar mesh.
+/// It borrows or owns (`Cow`) the points and triangles: the remesh borrows the map's,
+/// [`crate::cap::InverseMap`] keeps its own subset of faces.
 pub struct Locator<'a> {
-    points: &'a [[f64; 2]],
-    faces: &'a [[u32; 3]],
+    points: Cow<'a, [[f64; 2]]>,
+    faces: Cow<'a, [[u32; 3]]>,
     nodes: Vec<Node>,
     order: Vec<u32>,
     /// Per position of `order`, its triangle's barycentric map (see [`Affine`]): a leaf's
@@ -83,7 +87,8 @@ impl Affine {
 
 impl<'a> Locator<'a> {
     /// Build the hierarchy (median splits along the longer side of the centroids' box).
-    pub fn new(points: &'a [[f64; 2]], faces: &'a [[u32; 3]]) -> Self {
+    pub fn new(points: impl Into<Cow<'a, [[f64; 2]]>>, faces: impl Into<Cow<'a, [[u32; 3]]>>) -> Self {
+        let (points, faces) = (points.into(), faces.into());
         let boxes: Vec<([f64; 2], [f64; 2])> = faces
             .iter()
             .map(|t| {

@@ -7,16 +7,18 @@ pub mod locate;
 pub mod pullback;
 pub mod shape;
 pub mod sizing;
+pub mod transfer;
 
 use crate::refine::area_refine::AreaRefineReport;
 use crate::param::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
-use crate::cap::stereographic;
+use crate::cap::{stereographic, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
 use crate::mesh::geometry::triangle_area;
 use crate::mesh::{SurfaceKind, TriMesh};
 use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// Which cap mesh to pull back.
@@ -176,11 +178,18 @@ const RIM_TOLERANCE: f64 = 1e-6;
 /// The work runs on a worker thread of rayon's pool; `progress` is called on this thread
 /// (see `crate::pool`).
 pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport), Error> {
-    crate::pool::on_pool(progress, |progress| remesh_here(mesh, options, progress))
+    crate::pool::on_pool(progress, |progress| remesh_here(mesh, options, progress, false)).map(|(m, r, _)| (m, r))
 }
 
-/// [`remesh`] on the current thread.
-fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport), Error> {
+/// [`remesh`], also returning each remesh vertex's point of the input surface (face and
+/// barycentric coordinates, through the inverse map): what [`transfer::carry_attribute`]
+/// carries per-vertex data with.
+pub fn remesh_located(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
+    crate::pool::on_pool(progress, |progress| remesh_here(mesh, options, progress, true))
+}
+
+/// [`remesh`] on the current thread; the surface points only when `locate`.
+fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let start = Instant::now();
     // Refused before the parameterization, which would be wasted.
     let asked = options.grid.approximate_faces();
@@ -196,6 +205,8 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         CapGrid::Uniform { faces } => grid::uniform_cap(z_star, faces.max(1)),
         CapGrid::LatLong { rings, sectors } => grid::lat_long(z_star, rings, sectors),
     };
+    // The inverse map, its point location built once for the pull-back and the shape stage.
+    let inverse = map.inverse(mesh)?;
     let no_face = || Error::Unsupported("the parameterized mesh has no face to pull back from".into());
     let top_faces: Vec<[u32; 3]> = (0..mesh.n_faces()).filter(|f| !map.bottom_faces.contains(f)).map(|f| mesh.faces[f]).collect();
     // The rim (the cap grid's last ring) and the bottom stay where the pull-back put them.
@@ -220,7 +231,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         let mut planar: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
         let (corners, rim_radius) = polygon_of((0..mesh.n_vertices() as u32).filter(|&v| input_boundary[v as usize]), &map.plane);
         pullback::rim_band_into_polygon(&mut planar, &corners, rim_radius);
-        let positions = pullback::pull_back_planar(mesh, &map.plane, &planar).ok_or_else(no_face)?;
+        let positions = planar.par_iter().map(|&q| inverse.locate_plane(q).map(|p| p.position)).collect::<Option<Vec<_>>>().ok_or_else(no_face)?;
         let n = cap.vertices.len();
         (cap, planar, positions, n)
     };
@@ -253,7 +264,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     }
     if shaped {
         progress::check(progress, Stage::Remesh, 0.3, "shaping the triangles")?;
-        let lift = shape::state::SurfaceLift::new(mesh, &map.plane, &top_faces);
+        let lift = shape::state::SurfaceLift::new(&inverse);
         let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &input_boundary) };
         let density = sizing::vertex_density(mesh, options.shape.sizing, faces.len());
         let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed, density: density.as_deref() };
@@ -280,6 +291,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
     };
     let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &faces, &target, &fixed, &mut planar, &mut positions, sweeps);
     let equalize_seconds = t_eq.elapsed().as_secs_f64();
+    let points = if locate { transfer::surface_points(&inverse, &planar, &has_plane, &positions) } else { Vec::new() };
     let out = TriMesh::new(positions, faces);
     let t_metrics = Instant::now();
     let quality = remesh_metrics(mesh, &out);
@@ -296,5 +308,5 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress)
         equalize_seconds,
         metrics_seconds,
     };
-    Ok((out, report))
+    Ok((out, report, points))
 }

@@ -68,7 +68,7 @@ pub fn pull_back_closed_from(surface: &TriMesh, map: &CapMap, grid: &ClosedCapGr
 /// assigns to `p`: the disk's rim goes to the polygon's sides, its centre stays. Without the
 /// scaling, bottom points between a side and the rim would all land on that side (zero-area
 /// faces). `p` itself when the polygon does not contain the origin.
-fn onto_polygon(p: [f64; 2], corners: &[[f64; 2]], rim_radius: f64) -> [f64; 2] {
+pub(crate) fn onto_polygon(p: [f64; 2], corners: &[[f64; 2]], rim_radius: f64) -> [f64; 2] {
     let len = p[0].hypot(p[1]);
     if len == 0.0 || rim_radius <= 0.0 || !surrounds_origin(corners) {
         return p;
@@ -93,7 +93,7 @@ pub(crate) fn polygon_by_angle(mut corners: Vec<[f64; 2]>) -> (Vec<[f64; 2]>, f6
 
 /// Whether the polygon `corners` (counter-clockwise by angle) has the origin strictly inside:
 /// every side turns counter-clockwise around it.
-fn surrounds_origin(corners: &[[f64; 2]]) -> bool {
+pub(crate) fn surrounds_origin(corners: &[[f64; 2]]) -> bool {
     let m = corners.len();
     m >= 3 && (0..m).all(|k| {
         let (a, b) = (corners[k], corners[(k + 1) % m]);
@@ -142,7 +142,7 @@ const BAND_DEPTHS: f64 = 1.5;
 
 /// Distance from the origin to the polygon `corners` along the unit direction `u`, if the
 /// ray meets a side.
-fn polygon_radius(u: [f64; 2], corners: &[[f64; 2]]) -> Option<f64> {
+pub(crate) fn polygon_radius(u: [f64; 2], corners: &[[f64; 2]]) -> Option<f64> {
     let m = corners.len();
     for k in 0..m {
         let (a, b) = (corners[k], corners[(k + 1) % m]);

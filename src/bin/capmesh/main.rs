@@ -10,6 +10,7 @@ macro_rules! outln {
     };
 }
 
+mod attributes_arg;
 mod basis_args;
 mod cli_progress;
 mod failure;
@@ -26,7 +27,7 @@ use basis_args::BasisArgs;
 use capmesh::cap::Domain;
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io;
-use capmesh::remesh::{remesh, CapGrid, RemeshOptions};
+use capmesh::remesh::{CapGrid, RemeshOptions};
 use capmesh::mesh;
 use clap::{Parser, Subcommand};
 use failure::Failure;
@@ -71,6 +72,10 @@ enum Command {
         /// Write a JSON report here.
         #[arg(long)]
         report: Option<PathBuf>,
+        /// Also write the input mesh with the map as texture coordinates (.obj: vt, .ply:
+        /// texture_u/texture_v; the disk scaled into [0,1]^2).
+        #[arg(long, value_name = "OUT")]
+        uv: Option<PathBuf>,
         /// Write figures (PNG, SVG) and an index.md linking them into this directory.
         #[arg(long, value_name = "DIR")]
         figures: Option<PathBuf>,
@@ -86,6 +91,10 @@ enum Command {
         /// Output mesh.
         #[arg(short, long)]
         output: PathBuf,
+        /// Carry a per-vertex data file (GIFTI .shape/.func/.label.gii, FreeSurfer curv) to
+        /// the remesh (repeatable): PLY vertex properties, or .gii files beside a GIFTI output.
+        #[arg(long, value_name = "PATH")]
+        attribute: Vec<PathBuf>,
         /// Target face count of the uniform cap mesh.
         #[arg(long, default_value_t = 5000, conflicts_with = "lat_long")]
         faces: usize,
@@ -357,7 +366,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let basis = basis.kind()?;
             shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, basis, groups, quiet: cli.quiet })
         }
-        Command::Remesh { input, output, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, sizing, figures, map } => {
+        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, sizing, figures, map } => {
             refuse_overwrite(&input, &output)?;
             if let Some(r) = &report {
                 refuse_overwrite(&input, r)?;
@@ -365,16 +374,28 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             let t_read = std::time::Instant::now();
             let m = read(&input)?;
+            let attributes = attributes_arg::read_all(&attribute, &m, &output)?;
             let read_seconds = t_read.elapsed().as_secs_f64();
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
             let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing);
             let mut options = RemeshOptions { grid, area_equalization, optimize, shape, ..Default::default() };
             map.apply(&mut options.param);
-            let (out, rep) = remesh(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
+            let (out, rep, points) = capmesh::remesh_located(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
             bar.finish();
             let t_write = std::time::Instant::now();
-            let mut staged = vec![outputs::stage_mesh(&output, &out)?];
+            let carried: Vec<_> = attributes.iter().map(|a| capmesh::carry_attribute(&m, &points, a)).collect();
+            let mut staged = if carried.is_empty() || io::Format::from_path(&output) != Some(io::Format::Ply) {
+                vec![outputs::stage_mesh(&output, &out)?]
+            } else {
+                vec![io::stage_mesh_with_properties(&output, &out, &attributes_arg::ply_properties(&carried), &Default::default())?]
+            };
+            if !carried.is_empty() && io::Format::from_path(&output) == Some(io::Format::Gifti) {
+                for (path, file) in attributes_arg::stage_gifti(&output, &carried)? {
+                    refuse_overwrite(&input, &path)?;
+                    staged.push(file);
+                }
+            }
             let write_seconds = t_write.elapsed().as_secs_f64();
             outln!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
             warn_if_poor(&input, &rep.param);
@@ -484,12 +505,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Param { input, output, domain, report, figures, map } => {
+        Command::Param { input, output, domain, report, uv, figures, map } => {
             refuse_overwrite(&input, &output)?;
-            if let Some(r) = &report {
-                refuse_overwrite(&input, r)?;
-                outputs::refuse_duplicates(&[&output, r])?;
+            let extra: Vec<&Path> = report.iter().chain(uv.iter()).map(|p| p.as_path()).collect();
+            for p in &extra {
+                refuse_overwrite(&input, p)?;
             }
+            outputs::refuse_duplicates(&[&[output.as_path()][..], &extra].concat())?;
             let m = read(&input)?;
             let bar = cli_progress::Bar::new(cli.quiet);
             let mut options = ParamOptions::default().with_domain(domain);
@@ -497,6 +519,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let cap = parameterize(&m, &options, &bar).map_err(|e| failure::of_pipeline("param", &input, bar.stage(), e))?;
             bar.finish();
             let mut staged = vec![outputs::stage_mesh(&output, &cap.cap_mesh(&m))?];
+            if let Some(path) = &uv {
+                let extra = capmesh::io::VertexProperties::default().with_uv(cap.uv());
+                staged.push(capmesh::io::stage_mesh_with_properties(path, &m, &extra, &Default::default())?);
+            }
             let r = &cap.report;
             outln!(
                 "{}: {} onto {}: Z* = {}, mean |d_area| = {:.4}, mean |d_angle| = {:.4} rad, flipped faces = {}, {:.2} s",

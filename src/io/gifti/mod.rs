@@ -10,10 +10,12 @@
 //! do.
 
 mod array;
+mod data_write;
 mod write;
 
 use std::path::Path;
 
+pub(crate) use data_write::write_attribute;
 pub use write::{Endian, GiftiEncoding, GiftiFloat, GiftiOptions};
 pub(crate) use write::write;
 

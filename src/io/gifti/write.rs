@@ -153,7 +153,7 @@ fn header(w: &mut dyn Write, intent: &str, data_type: &str, rows: usize, options
 }
 
 /// `<Data>` content of a binary encoding (without the tags).
-fn binary_data(w: &mut dyn Write, raw: &[u8], options: &GiftiOptions) -> std::io::Result<()> {
+pub(super) fn binary_data(w: &mut dyn Write, raw: &[u8], options: &GiftiOptions) -> std::io::Result<()> {
     write!(w, "    <Data>")?;
     let text = if options.encoding == GiftiEncoding::GzipBase64Binary {
         let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::default());

@@ -3,7 +3,8 @@
 //! Reads the `vertex` element's `x`, `y`, `z` (any scalar type) and the `face` element's
 //! `vertex_indices` (or `vertex_index`) list (any integer count and index types), skipping
 //! every other property and element, lists included. Polygons are fan-triangulated. Writes
-//! `double` coordinates and `uchar`/`int` index lists.
+//! `double` coordinates, `uchar`/`int` index lists and, when given, `float` vertex
+//! properties (`texture_u`/`texture_v`, named attributes: [`VertexProperties`]).
 
 mod header;
 mod source;
@@ -15,6 +16,7 @@ use self::header::{Element, Encoding, Property};
 use self::source::{AsciiSource, BinarySource, Source, ValueError};
 use super::error::{Location, ReadError};
 use super::{fan, parse_error};
+use super::VertexProperties;
 use crate::mesh::TriMesh;
 
 /// What a property means to us.
@@ -245,7 +247,7 @@ fn read_data<S: Source>(
     Ok(TriMesh::new(vertices, faces))
 }
 
-fn write_header(w: &mut dyn Write, mesh: &TriMesh, format: &str) -> std::io::Result<()> {
+fn write_header(w: &mut dyn Write, mesh: &TriMesh, extra: &VertexProperties, format: &str) -> std::io::Result<()> {
     let index_type = if mesh.n_vertices() > i32::MAX as usize {
         "uint"
     } else {
@@ -254,20 +256,41 @@ fn write_header(w: &mut dyn Write, mesh: &TriMesh, format: &str) -> std::io::Res
     write!(
         w,
         "ply\nformat {format} 1.0\ncomment written by capmesh\nelement vertex {}\n\
-         property double x\nproperty double y\nproperty double z\nelement face {}\n\
-         property list uchar {index_type} vertex_indices\nend_header\n",
-        mesh.n_vertices(),
-        mesh.n_faces()
-    )
+         property double x\nproperty double y\nproperty double z\n",
+        mesh.n_vertices()
+    )?;
+    if extra.uv.is_some() {
+        write!(w, "property float texture_u\nproperty float texture_v\n")?;
+    }
+    for (name, _) in &extra.scalars {
+        writeln!(w, "property float {name}")?;
+    }
+    write!(w, "element face {}\nproperty list uchar {index_type} vertex_indices\nend_header\n", mesh.n_faces())
 }
 
-/// Write binary little-endian PLY. The mesh has been checked by the caller.
-pub(crate) fn write_binary(w: &mut dyn Write, mesh: &TriMesh) -> std::io::Result<()> {
-    write_header(w, mesh, "binary_little_endian")?;
-    let mut buf = [0u8; 24];
-    for p in &mesh.vertices {
-        for k in 0..3 {
-            buf[8 * k..8 * k + 8].copy_from_slice(&p[k].to_le_bytes());
+/// The extra values of vertex `v` in property order: `u`, `v`, then the scalars.
+fn extras_of(extra: &VertexProperties, v: usize, out: &mut Vec<f32>) {
+    out.clear();
+    if let Some(uv) = &extra.uv {
+        out.extend([uv[v][0] as f32, uv[v][1] as f32]);
+    }
+    out.extend(extra.scalars.iter().map(|(_, values)| values[v]));
+}
+
+/// Write binary little-endian PLY with the vertex properties `extra`. The mesh and `extra`
+/// have been checked by the caller.
+pub(crate) fn write_binary(w: &mut dyn Write, mesh: &TriMesh, extra: &VertexProperties) -> std::io::Result<()> {
+    write_header(w, mesh, extra, "binary_little_endian")?;
+    let mut buf = Vec::with_capacity(64);
+    let mut values = Vec::new();
+    for (v, p) in mesh.vertices.iter().enumerate() {
+        buf.clear();
+        for x in p {
+            buf.extend_from_slice(&x.to_le_bytes());
+        }
+        extras_of(extra, v, &mut values);
+        for x in &values {
+            buf.extend_from_slice(&x.to_le_bytes());
         }
         w.write_all(&buf)?;
     }
@@ -282,11 +305,18 @@ pub(crate) fn write_binary(w: &mut dyn Write, mesh: &TriMesh) -> std::io::Result
     Ok(())
 }
 
-/// Write ASCII PLY. The mesh has been checked by the caller.
-pub(crate) fn write_ascii(w: &mut dyn Write, mesh: &TriMesh) -> std::io::Result<()> {
-    write_header(w, mesh, "ascii")?;
-    for p in &mesh.vertices {
-        writeln!(w, "{:?} {:?} {:?}", p[0], p[1], p[2])?;
+/// Write ASCII PLY with the vertex properties `extra`. The mesh and `extra` have been checked
+/// by the caller.
+pub(crate) fn write_ascii(w: &mut dyn Write, mesh: &TriMesh, extra: &VertexProperties) -> std::io::Result<()> {
+    write_header(w, mesh, extra, "ascii")?;
+    let mut values = Vec::new();
+    for (v, p) in mesh.vertices.iter().enumerate() {
+        write!(w, "{:?} {:?} {:?}", p[0], p[1], p[2])?;
+        extras_of(extra, v, &mut values);
+        for x in &values {
+            write!(w, " {x:?}")?;
+        }
+        writeln!(w)?;
     }
     for f in &mesh.faces {
         writeln!(w, "3 {} {} {}", f[0], f[1], f[2])?;

@@ -4,8 +4,7 @@
 
 use crate::mesh::fasthash::FastMap;
 use crate::mesh::geometry::{cross, dot, norm, signed_area_2d, sub};
-use crate::mesh::TriMesh;
-use crate::remesh::locate::Locator;
+use crate::cap::InverseMap;
 
 /// What a vertex of the remesh may do.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -18,37 +17,35 @@ pub(crate) enum Role {
     Fixed,
 }
 
-/// The inverse map as a lift from the plane to the surface: point location among the planar
-/// images of the input's faces, then the barycentric combination of their corners.
+/// The inverse map as a lift from the plane to the surface: [`InverseMap::locate_plane`]
+/// with a face hint (an index of [`InverseMap::top_faces`]).
 pub(crate) struct SurfaceLift<'a> {
-    surface: &'a TriMesh,
-    faces: &'a [[u32; 3]],
-    locator: Locator<'a>,
+    inverse: &'a InverseMap<'a>,
 }
 
 impl<'a> SurfaceLift<'a> {
-    /// The lift of the faces `faces` of `surface`, whose vertices sit at `plane`.
-    pub(crate) fn new(surface: &'a TriMesh, plane: &'a [[f64; 2]], faces: &'a [[u32; 3]]) -> Self {
-        Self { surface, faces, locator: Locator::new(plane, faces) }
+    /// The lift through `inverse`.
+    pub(crate) fn new(inverse: &'a InverseMap<'a>) -> Self {
+        Self { inverse }
     }
 
     /// The input's per-vertex `values` interpolated at the planar point `q` (linear on the
     /// input face it lies in), trying face `hint` first.
     pub(crate) fn interpolate(&self, q: [f64; 2], hint: u32, values: &[f64]) -> Option<f64> {
         let hint = (hint != u32::MAX).then_some(hint as usize);
-        let loc = self.locator.locate_near(q, hint)?;
-        let [a, b, c] = self.faces[loc.face].map(|v| values[v as usize]);
-        Some(loc.bary[0] * a + loc.bary[1] * b + loc.bary[2] * c)
+        let (point, _) = self.inverse.locate_plane_near(q, hint)?;
+        let f = self.inverse.mesh().faces[point.face];
+        let w = point.barycentric;
+        Some(w[0] * values[f[0] as usize] + w[1] * values[f[1] as usize] + w[2] * values[f[2] as usize])
     }
 
-    /// The surface point of the planar point `q` and the input face it lies in, trying face
-    /// `hint` first (the answer does not depend on it, see [`Locator::locate_near`]).
+    /// The surface point of the planar point `q` and the face it lies in (an index of
+    /// [`InverseMap::top_faces`]), trying face `hint` first (the answer does not depend on
+    /// it, see [`crate::remesh::locate::Locator::locate_near`]).
     pub(crate) fn lift(&self, q: [f64; 2], hint: u32) -> Option<([f64; 3], u32)> {
         let hint = (hint != u32::MAX).then_some(hint as usize);
-        let loc = self.locator.locate_near(q, hint)?;
-        let [a, b, c] = self.faces[loc.face].map(|v| self.surface.vertices[v as usize]);
-        let w = loc.bary;
-        Some(([0, 1, 2].map(|k| w[0] * a[k] + w[1] * b[k] + w[2] * c[k]), loc.face as u32))
+        let (point, face) = self.inverse.locate_plane_near(q, hint)?;
+        Some((point.position, face as u32))
     }
 }
 
