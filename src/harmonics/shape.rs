@@ -13,7 +13,7 @@
 //! with `x_i` the (unit) cap points, by a dense QR of the `k x 4` matrix `[1 | x_i^T]`. The
 //! translation `c` is added to the paper's `min_A sum |y_i - A x_i|^2` so that the result does not
 //! depend on where the surface sits. The singular values `sigma_1 >= sigma_2 >= sigma_3` of the
-//! `3 x 3` matrix `A` (faer's dense SVD) give the ratio.
+//! `3 x 3` matrix `A` (nalgebra's `SVD` of a `Matrix3`) give the ratio.
 //!
 //! On the whole sphere (`Z* = -1`) the order-1 functions are `1, X, Y, Z`, so an ellipsoid
 //! `y = D x` is reproduced exactly and its ratio is exact. On a smaller cap the order-1 functions
@@ -39,6 +39,7 @@
 
 use faer::linalg::solvers::{Qr, SolveLstsq};
 use faer::Mat;
+use nalgebra::Matrix3;
 use serde::{Deserialize, Serialize};
 
 use super::any_basis::HarmonicBasis;
@@ -161,12 +162,9 @@ fn singular_values(a: &[[f64; 3]; 3]) -> Result<[f64; 3], HarmonicsError> {
     if !a.iter().flatten().all(|v| v.is_finite()) {
         return Err(HarmonicsError::SvdFailed);
     }
-    let m = Mat::from_fn(3, 3, |i, j| a[i][j]);
-    let s = m.singular_values().map_err(|_| HarmonicsError::SvdFailed)?;
-    let mut out = [0.0; 3];
-    for (o, v) in out.iter_mut().zip(s) {
-        *o = v;
-    }
+    // nalgebra's bidiagonalising SVD; `0` iterations means "until converged".
+    let svd = Matrix3::from_fn(|i, j| a[i][j]).try_svd(false, false, f64::EPSILON, 0).ok_or(HarmonicsError::SvdFailed)?;
+    let mut out = [svd.singular_values[0], svd.singular_values[1], svd.singular_values[2]];
     out.sort_by(|x, y| y.total_cmp(x));
     Ok(out)
 }
