@@ -25,7 +25,7 @@ from ._capmesh import (  # noqa: F401  (re-exported)
 )
 
 __all__ = [
-    "CapMap", "parameterize", "remesh", "metrics", "read_mesh", "write_mesh",
+    "CapMap", "parameterize", "remesh", "harmonics", "metrics", "read_mesh", "write_mesh",
     "CapmeshError", "Cancelled", "ComputeError", "InputError", "InternalError", "MeshError",
     "ReadError", "WriteError",
 ]
@@ -100,6 +100,16 @@ def remesh(vertices, faces, faces_target: int = 5000, lat_long: Optional[Tuple[i
     no_resample."""
     v, f, report = _capmesh.remesh(_vertices(vertices), _faces(faces), faces_target, lat_long, progress, **options)
     return v, f, _json.loads(report)
+
+
+def harmonics(vertices, faces, order: int = 10, domain: str = "adaptive", progress: Optional[ProgressCallback] = None,
+              **options) -> Tuple[_np.ndarray, _np.ndarray, Dict[str, Any]]:
+    """Adaptive harmonics up to ``order``, as ``capmesh harmonics``: returns the reconstructed
+    vertices (the input's connectivity), the ``(order + 1)**2`` coefficients ``(x, y, z)`` in
+    the library's basis order, and the report (``--report``) as a dict. Options: those of
+    :func:`parameterize`."""
+    v, c, report = _capmesh.harmonics(_vertices(vertices), _faces(faces), order, domain, progress, **options)
+    return v, c, _json.loads(report)
 
 
 def metrics(original: Tuple[Any, Any], remeshed: Tuple[Any, Any]) -> Dict[str, Any]:

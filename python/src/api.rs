@@ -96,3 +96,22 @@ pub fn metrics(py: Python<'_>, v0: &Bound<'_, PyAny>, f0: &Bound<'_, PyAny>, v1:
     let q = py.allow_threads(|| capmesh::metrics::remesh_metrics(&a, &b));
     json(&q)
 }
+
+/// harmonics(vertices, faces, order=10, domain="adaptive", progress=None, **options)
+///   -> (reconstructed_vertices, coefficients, report_json)
+#[pyfunction]
+#[pyo3(signature = (vertices, faces, order=capmesh::harmonics::pipeline::DEFAULT_ORDER, domain="adaptive", progress=None, **options))]
+pub fn harmonics<'py>(
+    py: Python<'py>,
+    vertices: &Bound<'py, PyAny>,
+    faces: &Bound<'py, PyAny>,
+    order: usize,
+    domain: &str,
+    progress: Option<Py<PyAny>>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, String)> {
+    let mesh = arrays::mesh(vertices, faces)?;
+    let options = capmesh::HarmonicsOptions { order, param: options::param(domain, options)? };
+    let out = run(py, progress, |sink| capmesh::analyze(&mesh, &options, sink))?;
+    Ok((arrays::f64_rows(py, &out.reconstructed.vertices), arrays::f64_rows(py, &out.fit.coefficients), json(&out.report)?))
+}

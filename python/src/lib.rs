@@ -23,5 +23,6 @@ fn _capmesh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(api::parameterize, m)?)?;
     m.add_function(wrap_pyfunction!(api::remesh, m)?)?;
     m.add_function(wrap_pyfunction!(api::metrics, m)?)?;
+    m.add_function(wrap_pyfunction!(api::harmonics, m)?)?;
     Ok(())
 }

@@ -89,3 +89,19 @@ def test_write_read_round_trip(tmp_path):
         v2, f2 = capmesh.read_mesh(tmp_path / name)
         np.testing.assert_array_equal(f2, f)
         np.testing.assert_allclose(v2, v, atol=1e-5 * np.abs(v).max())
+
+
+def test_harmonics_equals_cli(cli, tmp_path):
+    out, report, coefficients = tmp_path / "rec.obj", tmp_path / "h.json", tmp_path / "c.json"
+    done = cli("harmonics", OPEN_MESH, "--order", 6, "-o", out, "--report", report, "--coefficients", coefficients, "--quiet")
+    assert done.returncode == 0, done.stderr
+    expected = json.loads(report.read_text())
+
+    v, f = capmesh.read_mesh(OPEN_MESH)
+    rec, coef, rep = capmesh.harmonics(v, f, order=6)
+    assert coef.shape == ((6 + 1) ** 2, 3)
+    assert rep["z_star"] == expected["z_star"]
+    assert rep["errors_by_order"] == expected["errors_by_order"]
+    cli_v, cli_f = capmesh.read_mesh(out)
+    np.testing.assert_array_equal(cli_f, f)
+    np.testing.assert_allclose(rec, cli_v, rtol=0, atol=1e-12)
