@@ -1,0 +1,86 @@
+//! Keyword arguments -> the library's options. The names are the CLI's flags with `_` for
+//! `-` (`lambda_` for `--lambda`, a Python keyword); values as the CLI takes them (strings
+//! for the enums, parsed by the library's own `FromStr`). An unknown name is an error.
+
+use capmesh::param::{OpenInitialMap, PunctureEnd};
+use capmesh::refine::Smoothing;
+use capmesh::remesh::Optimize;
+use capmesh::{ParamOptions, RemeshOptions};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::input;
+
+/// The parameterization options shared by `parameterize` and `remesh` (the CLI's `MapArgs`).
+pub const MAP_OPTIONS: [&str; 8] = ["initial", "lambda_", "open_lambda", "no_lambda_fallback", "smoothing", "area_refinement", "puncture_end", "search_sites"];
+/// The options of `remesh` only.
+pub const REMESH_OPTIONS: [&str; 6] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "shape_weight", "no_resample"];
+
+fn parsed<T: std::str::FromStr<Err = String>>(value: &Bound<'_, PyAny>) -> PyResult<T> {
+    let text: String = value.str()?.extract()?;
+    text.parse::<T>().map_err(input)
+}
+
+fn number<'py, T: FromPyObject<'py>>(name: &str, value: &Bound<'py, PyAny>) -> PyResult<T> {
+    value.extract::<T>().map_err(|_| input(format!("{name} = {value} is not a valid {}", std::any::type_name::<T>())))
+}
+
+/// Set one parameterization option; `false` when `name` is not one.
+fn set_map_option(options: &mut ParamOptions, name: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
+    match name {
+        "initial" => options.open_initial = parsed::<OpenInitialMap>(value)?,
+        "lambda_" | "lambda" => options.closed.lambda = number(name, value)?,
+        "open_lambda" => options.open_lambda = number(name, value)?,
+        "no_lambda_fallback" => {
+            if number::<bool>(name, value)? {
+                options.closed_lambda_fallbacks.clear();
+            }
+        }
+        "smoothing" => options.smoothing = parsed::<Smoothing>(value)?,
+        "area_refinement" => options.area_refinement = number(name, value)?,
+        "puncture_end" => options.puncture_end = parsed::<PunctureEnd>(value)?,
+        "search_sites" => options.search_sites = number(name, value)?,
+        _ => return Ok(false),
+    }
+    Ok(true)
+}
+
+fn unknown(name: &str, known: &[&str]) -> PyErr {
+    input(format!("unknown option {name:?}; the options are {}", known.join(", ")))
+}
+
+/// [`ParamOptions`] of a domain string and keyword arguments.
+pub fn param(domain: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<ParamOptions> {
+    let mut options = ParamOptions::default().with_domain(domain.parse().map_err(input)?);
+    if let Some(kwargs) = kwargs {
+        for (key, value) in kwargs.iter() {
+            let name: String = key.extract()?;
+            if !set_map_option(&mut options, &name, &value)? {
+                return Err(unknown(&name, &MAP_OPTIONS));
+            }
+        }
+    }
+    Ok(options)
+}
+
+/// [`RemeshOptions`] of the grid and keyword arguments.
+pub fn remesh(grid: capmesh::CapGrid, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<RemeshOptions> {
+    let mut options = RemeshOptions { grid, ..Default::default() };
+    let Some(kwargs) = kwargs else { return Ok(options) };
+    for (key, value) in kwargs.iter() {
+        let name: String = key.extract()?;
+        if set_map_option(&mut options.param, &name, &value)? {
+            continue;
+        }
+        match name.as_str() {
+            "area_equalization" => options.area_equalization = number(&name, &value)?,
+            "optimize" => options.optimize = parsed::<Optimize>(&value)?,
+            "relax_iterations" => options.shape = options.shape.clone().with_relax_iterations(number(&name, &value)?),
+            "polish_iterations" => options.shape = options.shape.clone().with_polish_iterations(number(&name, &value)?),
+            "shape_weight" => options.shape = options.shape.clone().with_shape_weight(number(&name, &value)?),
+            "no_resample" => options.shape = options.shape.clone().with_resample(!number::<bool>(&name, &value)?),
+            _ => return Err(unknown(&name, &[&MAP_OPTIONS[..], &REMESH_OPTIONS[..]].concat())),
+        }
+    }
+    Ok(options)
+}

@@ -1,0 +1,107 @@
+"""The package gives the CLI's results on the bundled meshes (same library, same defaults)."""
+
+import json
+
+import numpy as np
+import pytest
+
+import capmesh
+from conftest import CLOSED_MESH, OPEN_MESH
+
+
+@pytest.mark.parametrize("path", [OPEN_MESH, CLOSED_MESH], ids=["open", "closed"])
+def test_parameterize_equals_cli(path, cli, tmp_path):
+    out, report = tmp_path / "cap.obj", tmp_path / "param.json"
+    done = cli("param", path, "-o", out, "--report", report, "--quiet")
+    assert done.returncode == 0, done.stderr
+    expected = json.loads(report.read_text())
+
+    v, f = capmesh.read_mesh(path)
+    m = capmesh.parameterize(v, f)
+    assert m.z_star == expected["z_star"]
+    assert m.r_star == expected["r_star"]
+    assert m.report["kind"] == expected["kind"]
+    assert m.report["area_distortion"] == expected["area_distortion"]
+    assert m.report["flipped_faces"] == expected["flipped_faces"]
+    assert m.cap.shape == (len(v), 3) and m.plane.shape == (len(v), 2)
+    cap_cli, faces_cli = capmesh.read_mesh(out)
+    np.testing.assert_array_equal(faces_cli, f)
+    np.testing.assert_allclose(m.cap, cap_cli, rtol=0, atol=1e-12)
+    # The plane is the cap's stereographic projection from the south pole.
+    top = m.cap[:, 2] > -0.9
+    np.testing.assert_allclose(m.plane[top], m.cap[top, :2] / (1 + m.cap[top, 2:3]), atol=1e-9)
+
+
+def test_remesh_equals_cli(cli, tmp_path):
+    out, report = tmp_path / "remesh.obj", tmp_path / "remesh.json"
+    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet")
+    assert done.returncode == 0, done.stderr
+    expected = json.loads(report.read_text())
+
+    v, f = capmesh.read_mesh(OPEN_MESH)
+    rv, rf, rep = capmesh.remesh(v, f, faces_target=1000)
+    assert rep["quality"]["faces"] == expected["faces"] == len(rf)
+    assert rep["quality"]["d_face"] == expected["d_face"]
+    assert rep["quality"]["min_angle_deg"] == expected["min_angle_deg"]
+    assert rep["param"]["z_star"] == expected["parameterization"]["z_star"]
+    cli_v, cli_f = capmesh.read_mesh(out)
+    np.testing.assert_array_equal(rf, cli_f)
+    np.testing.assert_allclose(rv, cli_v, rtol=0, atol=1e-12)
+
+    # metrics() is `capmesh metrics --json`.
+    done = cli("metrics", OPEN_MESH, out, "--json")
+    assert done.returncode == 0, done.stderr
+    assert capmesh.metrics((v, f), (cli_v, cli_f)) == json.loads(done.stdout)
+
+
+def test_lat_long_grid_and_options():
+    v, f = capmesh.read_mesh(OPEN_MESH)
+    rv, rf, rep = capmesh.remesh(v, f, lat_long=(8, 16), optimize="area", search_sites=0)
+    assert rep["optimize"] == "area"
+    assert rep["param"]["search_sites"] is None
+    assert len(rf) == rep["quality"]["faces"] > 100
+
+
+@pytest.mark.parametrize("vdtype", [np.float32, np.float64])
+@pytest.mark.parametrize("fdtype", [np.int32, np.int64, np.uint32])
+def test_dtypes(vdtype, fdtype):
+    v, f = capmesh.read_mesh(OPEN_MESH)
+    reference = capmesh.parameterize(v.astype(vdtype).astype(np.float64), f, domain="hemisphere")
+    m = capmesh.parameterize(v.astype(vdtype), f.astype(fdtype), domain="hemisphere")
+    assert m.z_star == pytest.approx(0.0)
+    np.testing.assert_array_equal(m.cap, reference.cap)
+
+
+def test_strided_arrays_are_read_in_place():
+    v, f = capmesh.read_mesh(OPEN_MESH)
+    wide = np.zeros((len(v), 6))
+    wide[:, ::2] = v
+    a = capmesh.parameterize(v, f, domain="disk")
+    b = capmesh.parameterize(wide[:, ::2], np.asfortranarray(f), domain="disk")
+    np.testing.assert_array_equal(a.cap, b.cap)
+    assert a.z_star is None
+
+
+def test_write_read_round_trip(tmp_path):
+    v, f = capmesh.read_mesh(OPEN_MESH)
+    for name in ["m.ply", "m.off", "m.obj", "m.gii"]:
+        capmesh.write_mesh(tmp_path / name, v, f)
+        v2, f2 = capmesh.read_mesh(tmp_path / name)
+        np.testing.assert_array_equal(f2, f)
+        np.testing.assert_allclose(v2, v, atol=1e-5 * np.abs(v).max())
+
+
+def test_harmonics_equals_cli(cli, tmp_path):
+    out, report, coefficients = tmp_path / "rec.obj", tmp_path / "h.json", tmp_path / "c.json"
+    done = cli("harmonics", OPEN_MESH, "--order", 6, "-o", out, "--report", report, "--coefficients", coefficients, "--quiet")
+    assert done.returncode == 0, done.stderr
+    expected = json.loads(report.read_text())
+
+    v, f = capmesh.read_mesh(OPEN_MESH)
+    rec, coef, rep = capmesh.harmonics(v, f, order=6)
+    assert coef.shape == ((6 + 1) ** 2, 3)
+    assert rep["z_star"] == expected["z_star"]
+    assert rep["errors_by_order"] == expected["errors_by_order"]
+    cli_v, cli_f = capmesh.read_mesh(out)
+    np.testing.assert_array_equal(cli_f, f)
+    np.testing.assert_allclose(rec, cli_v, rtol=0, atol=1e-12)
