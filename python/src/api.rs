@@ -111,7 +111,7 @@ pub fn harmonics<'py>(
     options: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, String)> {
     let mesh = arrays::mesh(vertices, faces)?;
-    let options = capmesh::HarmonicsOptions { order, param: options::param(domain, options)? };
+    let options = capmesh::HarmonicsOptions::default().with_order(order).with_param(options::param(domain, options)?);
     let out = run(py, progress, |sink| capmesh::analyze(&mesh, &options, sink))?;
     Ok((arrays::f64_rows(py, &out.reconstructed.vertices), arrays::f64_rows(py, &out.fit.coefficients), json(&out.report)?))
 }
