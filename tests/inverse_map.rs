@@ -13,16 +13,6 @@ fn mapped(name: &str) -> (TriMesh, CapMap) {
     (mesh, map)
 }
 
-fn diagonal(mesh: &TriMesh) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in &mesh.vertices {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
-}
 
 fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
     (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
@@ -31,7 +21,7 @@ fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
 fn check(name: &str) {
     let (mesh, map) = mapped(name);
     let inverse = map.inverse(&mesh).unwrap();
-    let diag = diagonal(&mesh);
+    let diag = mesh.bounding_box_diagonal();
     let used: Vec<bool> = {
         let mut u = vec![false; mesh.n_vertices()];
         mesh.faces.iter().flatten().for_each(|&v| u[v as usize] = true);

@@ -58,16 +58,6 @@ fn distance_to_boundary(mesh: &TriMesh, p: [f64; 3]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-fn diagonal(mesh: &TriMesh) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in &mesh.vertices {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
-}
 
 /// The shape stage against the area-only remesh of the same map.
 fn check(name: &str) {
@@ -103,7 +93,7 @@ fn check(name: &str) {
     assert_eq!(rep.quality.zero_area_faces, 0, "{name}");
     assert!(rep.quality.d_surface_vertex_relative < 1e-9, "{name}: vertices off the surface");
     if validate(&mesh).unwrap().0 == SurfaceKind::OpenDisk {
-        let diag = diagonal(&mesh);
+        let diag = mesh.bounding_box_diagonal();
         let worst = boundary_vertices(&shaped).iter().map(|&v| distance_to_boundary(&mesh, shaped.vertices[v])).fold(0.0, f64::max);
         assert!(worst < 1e-9 * diag, "{name}: a boundary vertex is {worst} off the input's boundary");
     }
@@ -206,7 +196,7 @@ fn resampling_keeps_the_invariants() {
     assert!((rep.quality.faces as f64 - 5000.0).abs() <= 500.0, "{} faces", rep.quality.faces);
     assert!(rep.quality.d_surface_vertex_relative < 1e-9);
     assert_eq!(rep.quality.zero_area_faces, 0);
-    let diag = diagonal(&mesh);
+    let diag = mesh.bounding_box_diagonal();
     let worst = boundary_vertices(&out).iter().map(|&v| distance_to_boundary(&mesh, out.vertices[v])).fold(0.0, f64::max);
     assert!(worst < 1e-9 * diag, "a boundary vertex is {worst} off the input's boundary");
     assert!(a.mean_min_angle_deg >= b.mean_min_angle_deg && a.share_below_30 <= b.share_below_30.max(0.01), "{a:?} vs {b:?}");

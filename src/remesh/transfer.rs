@@ -21,7 +21,7 @@ const SAME_POINT: f64 = 1e-9;
 /// the input's faces.
 pub(crate) fn surface_points(inverse: &InverseMap, planar: &[[f64; 2]], has_plane: &[bool], positions: &[[f64; 3]]) -> Vec<SurfacePoint> {
     let mesh = inverse.mesh();
-    let tol = SAME_POINT * diagonal(mesh);
+    let tol = SAME_POINT * mesh.bounding_box_diagonal();
     positions
         .par_iter()
         .enumerate()
@@ -70,16 +70,6 @@ fn barycentric(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
     [w0 / s, w1 / s, w2 / s]
 }
 
-fn diagonal(mesh: &TriMesh) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in &mesh.vertices {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
-}
 
 /// `attribute` (one value per vertex of `mesh`) at the surface points `points`: scalars
 /// interpolated, labels from the corner of largest weight. The name and label table are kept.
