@@ -11,7 +11,8 @@
 //! areas), smoothed over the remesh's scale by averaging with the one-ring.
 
 use crate::linalg::laplacian::cotangent_weights;
-use crate::mesh::geometry::{norm, sub, triangle_area};
+use crate::mesh::geometry::{norm, sub, vertex_areas};
+use crate::mesh::topology::{is_boundary_vertex, vertex_neighbors};
 use crate::mesh::TriMesh;
 
 /// How the remesh's faces are sized.
@@ -23,8 +24,8 @@ pub enum Sizing {
     /// Density `1 + strength * k * L` (see the module docs); `strength` finite and > 0.
     Curvature {
         /// The weight of the curvature term ([`DEFAULT_CURVATURE_STRENGTH`] on the command
-        /// line): on the shared meshes 3 lowered the sampled surface distance by up to 38%
-        /// where 1 lowered it by up to 23% (docs/method.md, "Remesh sizing").
+        /// line): on the shared meshes 3 lowered the sampled surface distance by up to 36%
+        /// where 1 lowered it by up to 21% (docs/method.md, "Remesh sizing").
         strength: f64,
     },
 }
@@ -75,23 +76,8 @@ const MAX_SMOOTHING_PASSES: usize = 50;
 pub(crate) fn mean_curvature(mesh: &TriMesh) -> Vec<f64> {
     let n = mesh.n_vertices();
     let weights = cotangent_weights(&mesh.vertices, &mesh.faces);
-    let mut area = vec![0.0f64; n];
-    let mut edge_count = std::collections::HashMap::<(u32, u32), u8>::new();
-    for f in &mesh.faces {
-        let a = triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize]);
-        for k in 0..3 {
-            area[f[k] as usize] += a / 3.0;
-            let (u, v) = (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3]));
-            *edge_count.entry((u, v)).or_insert(0) += 1;
-        }
-    }
-    let mut boundary = vec![false; n];
-    for (&(u, v), &c) in &edge_count {
-        if c == 1 {
-            boundary[u as usize] = true;
-            boundary[v as usize] = true;
-        }
-    }
+    let area = vertex_areas(&mesh.vertices, &mesh.faces);
+    let boundary = is_boundary_vertex(mesh);
     let mut lap = vec![[0.0f64; 3]; n];
     for (&(i, j), &w) in weights.edges.iter().zip(&weights.weights) {
         let d = sub(mesh.vertices[j as usize], mesh.vertices[i as usize]);
@@ -126,17 +112,9 @@ pub(crate) fn mean_curvature(mesh: &TriMesh) -> Vec<f64> {
 pub(crate) fn vertex_density(mesh: &TriMesh, sizing: Sizing, faces: usize) -> Option<Vec<f64>> {
     let Sizing::Curvature { strength } = sizing else { return None };
     let n = mesh.n_vertices();
-    let mut area = vec![0.0f64; n];
-    let mut total = 0.0;
-    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
-    for f in &mesh.faces {
-        let a = triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize]);
-        total += a;
-        for k in 0..3 {
-            area[f[k] as usize] += a / 3.0;
-            neighbours[f[k] as usize].push(f[(k + 1) % 3]);
-        }
-    }
+    let area = vertex_areas(&mesh.vertices, &mesh.faces);
+    let total: f64 = area.iter().sum();
+    let neighbours = vertex_neighbors(mesh);
     if !(total > 0.0) || faces == 0 {
         return None;
     }
