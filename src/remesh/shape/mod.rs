@@ -24,6 +24,7 @@ pub(crate) mod polish;
 pub(crate) mod resample;
 pub(crate) mod smooth;
 pub(crate) mod state;
+pub(crate) mod uncross;
 
 use rayon::prelude::*;
 use state::{Role, Shaping, SurfaceLift};
@@ -122,6 +123,8 @@ pub struct ShapeReport {
     pub before: crate::metrics::angles::AngleQuality,
     /// The remesh's angles after it.
     pub after: crate::metrics::angles::AngleQuality,
+    /// The removal of self-crossing faces after the area equalization.
+    pub uncross: uncross::UncrossReport,
 }
 
 /// The edge length of equilateral faces of `mesh`'s mean area.
@@ -170,15 +173,15 @@ fn face_densities(faces: &[[u32; 3]], rho: &[f64]) -> Vec<f64> {
 /// Run the relaxation and polish iterations of `options` on the remesh `(faces, plane,
 /// position)`; returns the new faces (positions and planar points in place, vertices
 /// added and removed), which vertices must stay in later stages (the rim and bottom of a
-/// closed surface, the boundary of an open one), each face's relative target area (all 1
-/// when uniform) and the report.
+/// closed surface, the boundary of an open one), which have a planar point, each face's
+/// relative target area (all 1 when uniform) and the report.
 pub(crate) fn optimize_shape(
     input: &ShapeInput,
     faces: Vec<[u32; 3]>,
     plane: &mut Vec<[f64; 2]>,
     position: &mut Vec<[f64; 3]>,
     options: &ShapeOptions,
-) -> (Vec<[u32; 3]>, Vec<bool>, Vec<f64>, ShapeReport) {
+) -> (Vec<[u32; 3]>, Vec<bool>, Vec<bool>, Vec<f64>, ShapeReport) {
     let n = plane.len();
     let before = crate::metrics::angles::angle_quality_of(position, &faces);
     let mut report = ShapeReport { before, after: before, sizing: options.sizing, ..Default::default() };
@@ -194,14 +197,7 @@ pub(crate) fn optimize_shape(
             }
         })
         .collect();
-    let orientation = {
-        let s: f64 = faces
-            .iter()
-            .filter(|f| f.iter().all(|&v| input.has_plane[v as usize]) && f.iter().any(|&v| role[v as usize] != Role::Fixed))
-            .map(|f| crate::mesh::geometry::signed_area_2d(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize]).signum())
-            .sum();
-        if s < 0.0 { -1.0 } else { 1.0 }
-    };
+    let orientation = state::planar_orientation(&faces, plane, input.has_plane, &role);
     let has_plane = input.has_plane.to_vec();
     let mut mesh = Shaping { faces, plane: std::mem::take(plane), position: std::mem::take(position), hint: vec![u32::MAX; n], role, has_plane, orientation };
     let mut arc = vec![0.0f64; n];
@@ -286,5 +282,5 @@ pub(crate) fn optimize_shape(
     let stays = mesh.role.iter().map(|&r| r != Role::Free).collect();
     *plane = mesh.plane;
     *position = mesh.position;
-    (mesh.faces, stays, face_target, report)
+    (mesh.faces, stays, mesh.has_plane, face_target, report)
 }

@@ -49,6 +49,17 @@ impl<'a> SurfaceLift<'a> {
     }
 }
 
+/// The orientation (+1 or -1) held by most planar faces that have a planar point at every
+/// corner and a corner that moves.
+pub(crate) fn planar_orientation(faces: &[[u32; 3]], plane: &[[f64; 2]], has_plane: &[bool], role: &[Role]) -> f64 {
+    let s: f64 = faces
+        .iter()
+        .filter(|f| f.iter().all(|&v| has_plane[v as usize]) && f.iter().any(|&v| role[v as usize] != Role::Fixed))
+        .map(|f| signed_area_2d(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize]).signum())
+        .sum();
+    if s < 0.0 { -1.0 } else { 1.0 }
+}
+
 /// The remesh under optimisation.
 pub(crate) struct Shaping {
     /// Faces (changed by flips).

@@ -1,0 +1,235 @@
+//! Removal of self-crossing faces from the finished remesh (ours; see [`super`] and
+//! docs/method.md, "18. Remesh shape").
+//!
+//! Every remesh vertex lies on the input surface, but a flat triangle between three surface
+//! points can still cut through a neighbouring one where the surface bends sharply at the
+//! remesh's scale (between fingers, at the rim of an ear). On the shared meshes every such
+//! crossing is local: the two faces share a vertex or are at most two rings apart. This pass
+//! finds the crossing faces (MeshLab's test, [`crate::metrics::self_intersection`]) and moves
+//! their free vertices in the map's plane, lifted through the inverse map as everywhere in the
+//! shape stage, to the candidate position with the fewest crossings among the faces around the
+//! vertex: towards the planar centroid of its neighbours, or along the surface relaxation step.
+//! A move is kept only if it lowers the local count and keeps every incident planar face
+//! oriented, so the planar mesh stays an embedding and no vertex leaves the surface.
+
+use super::smooth::{relax_vertex, ring_valid_in_plane};
+use super::state::{edge_faces, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
+use crate::metrics::self_intersection::{face_pair_intersects, self_intersecting_faces};
+use crate::mesh::geometry::triangle_area;
+use crate::mesh::TriMesh;
+
+/// Rounds of detection and moves.
+const ROUNDS: usize = 6;
+
+/// Rings around a vertex whose faces are tested against its own.
+const RINGS: usize = 3;
+
+/// Degrees: a move may lower the smallest angle of a vertex's faces to no less than this (or
+/// their smallest angle before the move, if lower).
+const MIN_ANGLE: f64 = 15.0;
+
+/// Fractions of the way to the planar neighbour centroid that are tried.
+const FRACTIONS: [f64; 5] = [1.0, 0.75, 0.5, 0.25, 0.1];
+
+/// What the pass did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct UncrossReport {
+    /// Self-crossing faces before the pass.
+    pub before: usize,
+    /// Self-crossing faces after it.
+    pub after: usize,
+    /// Vertex moves made.
+    pub moves: usize,
+    /// Edge flips made.
+    pub flips: usize,
+}
+
+/// The faces within [`RINGS`] rings of vertex `v`, sorted.
+fn faces_around(mesh: &Shaping, incidence: &Incidence, v: usize) -> Vec<u32> {
+    let mut verts = vec![v as u32];
+    let mut faces: Vec<u32> = Vec::new();
+    let mut frontier = vec![v as u32];
+    for _ in 0..RINGS {
+        let mut next = Vec::new();
+        for &u in &frontier {
+            for &t in incidence.of(u as usize) {
+                faces.push(t);
+                for &w in &mesh.faces[t as usize] {
+                    if !verts.contains(&w) {
+                        verts.push(w);
+                        next.push(w);
+                    }
+                }
+            }
+        }
+        frontier = next;
+    }
+    faces.sort_unstable();
+    faces.dedup();
+    faces
+}
+
+/// Crossing pairs between the faces `ring` (at `v`, with `v` at `x`) and the faces `near`.
+fn local_crossings(mesh: &Shaping, ring: &[u32], near: &[u32], v: usize, x: [f64; 3]) -> usize {
+    let at = |u: u32| if u as usize == v { x } else { mesh.position[u as usize] };
+    let mut count = 0;
+    for &r in ring {
+        for &g in near {
+            // A pair of two ring faces is counted once, from its lower face.
+            if g == r || (ring.contains(&g) && g < r) {
+                continue;
+            }
+            let (lo, hi) = (r.min(g), r.max(g));
+            if face_pair_intersects(mesh.faces[lo as usize], mesh.faces[hi as usize], at) {
+                count += 1;
+            }
+        }
+    }
+    count
+}
+
+/// The best move of free vertex `v` that lowers its local crossing count: planar point,
+/// surface point and hint.
+fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &SurfaceLift) -> Option<([f64; 2], [f64; 3], u32)> {
+    let ring = incidence.of(v);
+    let near = faces_around(mesh, incidence, v);
+    let now = local_crossings(mesh, ring, &near, v, mesh.position[v]);
+    if now == 0 {
+        return None;
+    }
+    // The planar centroid of the neighbours.
+    let (mut c, mut k) = ([0.0f64; 2], 0.0);
+    for &t in ring {
+        for &u in &mesh.faces[t as usize] {
+            if u as usize != v && mesh.planar(u) {
+                c[0] += mesh.plane[u as usize][0];
+                c[1] += mesh.plane[u as usize][1];
+                k += 1.0;
+            }
+        }
+    }
+    let q0 = mesh.plane[v];
+    let ring_angle = |x: [f64; 3]| {
+        ring.iter()
+            .map(|&t| {
+                let p = mesh.faces[t as usize].map(|u| if u as usize == v { x } else { mesh.position[u as usize] });
+                if triangle_area(p[0], p[1], p[2]) > 0.0 { smallest_angle(p[0], p[1], p[2]) } else { 0.0 }
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    // A move may not leave a sliver the ring did not have.
+    let floor = ring_angle(mesh.position[v]).min(MIN_ANGLE.to_radians());
+    let mut candidates: Vec<[f64; 2]> = Vec::new();
+    if k > 0.0 {
+        let c = [c[0] / k, c[1] / k];
+        candidates.extend(FRACTIONS.iter().map(|&s| [q0[0] + s * (c[0] - q0[0]), q0[1] + s * (c[1] - q0[1])]));
+    }
+    if let Some((q, _, _)) = relax_vertex(mesh, incidence, v, lift, &|_| 1.0) {
+        candidates.push(q);
+    }
+    let mut best: Option<(usize, f64, [f64; 2], [f64; 3], u32)> = None;
+    for q in candidates {
+        if !ring_valid_in_plane(mesh, ring, v, q) {
+            continue;
+        }
+        let Some((x, face)) = lift.lift(q, mesh.hint[v]) else { continue };
+        let angle = ring_angle(x);
+        if !(angle > 0.0 && angle >= floor) {
+            continue;
+        }
+        let count = local_crossings(mesh, ring, &near, v, x);
+        // Fewest crossings first, then the best-shaped ring.
+        if count < now && best.as_ref().is_none_or(|b| count < b.0 || (count == b.0 && angle > b.1)) {
+            best = Some((count, angle, q, x, face));
+        }
+    }
+    best.map(|(_, _, q, x, face)| (q, x, face))
+}
+
+/// Flip an edge of crossing face `t` if that lowers the crossings among the faces around it,
+/// keeps both new faces oriented in the plane and leaves no smaller angle than the pair had
+/// (or [`MIN_ANGLE`]). Returns whether it flipped.
+fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32) -> bool {
+    let edges = edge_faces(&mesh.faces);
+    let f = mesh.faces[t as usize];
+    for k in 0..3 {
+        let (a, b) = (f[k], f[(k + 1) % 3]);
+        let Some(&pair) = edges.get(&(a.min(b), a.max(b))) else { continue };
+        // t1 runs a -> b (it is t), t2 runs b -> a.
+        let (t1, t2) = if a < b { (pair[0], pair[1]) } else { (pair[1], pair[0]) };
+        if t1 != t || t2 == u32::MAX {
+            continue;
+        }
+        let (Some(c), Some(d)) = (third(mesh.faces[t1 as usize], a, b), third(mesh.faces[t2 as usize], b, a)) else { continue };
+        if c == d || edges.contains_key(&(c.min(d), c.max(d))) || ![a, b, c, d].iter().all(|&v| mesh.planar(v)) {
+            continue;
+        }
+        let [pa, pb, pc, pd] = [a, b, c, d].map(|v| mesh.plane[v as usize]);
+        if !(mesh.oriented(pc, pa, pd, 0.0) && mesh.oriented(pd, pb, pc, 0.0)) {
+            continue;
+        }
+        let [xa, xb, xc, xd] = [a, b, c, d].map(|v| mesh.position[v as usize]);
+        let (new_faces, old_faces) = ([[xc, xa, xd], [xd, xb, xc]], [[xa, xb, xc], [xb, xa, xd]]);
+        if new_faces.iter().any(|p| !(triangle_area(p[0], p[1], p[2]) > 0.0)) {
+            continue;
+        }
+        let worst = |fs: &[[[f64; 3]; 3]; 2]| fs.iter().map(|p| smallest_angle(p[0], p[1], p[2])).fold(f64::INFINITY, f64::min);
+        if worst(&new_faces) < worst(&old_faces).min(MIN_ANGLE.to_radians()) {
+            continue;
+        }
+        let mut near = faces_around(mesh, incidence, a as usize);
+        near.extend(faces_around(mesh, incidence, b as usize));
+        near.sort_unstable();
+        near.dedup();
+        let before = local_crossings(mesh, &[t1, t2], &near, usize::MAX, [0.0; 3]);
+        let (old1, old2) = (mesh.faces[t1 as usize], mesh.faces[t2 as usize]);
+        mesh.faces[t1 as usize] = [c, a, d];
+        mesh.faces[t2 as usize] = [d, b, c];
+        if local_crossings(mesh, &[t1, t2], &near, usize::MAX, [0.0; 3]) < before {
+            return true;
+        }
+        mesh.faces[t1 as usize] = old1;
+        mesh.faces[t2 as usize] = old2;
+    }
+    false
+}
+
+/// Move the free vertices of crossing faces of `mesh` until none is left or a round makes no
+/// move (at most [`ROUNDS`] rounds). Deterministic: vertices are visited in index order.
+pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift) -> UncrossReport {
+    let crossing = |mesh: &Shaping| self_intersecting_faces(&TriMesh::new(mesh.position.clone(), mesh.faces.clone()));
+    let mut flagged = crossing(mesh);
+    let mut report = UncrossReport { before: flagged.len(), after: flagged.len(), ..Default::default() };
+    for _ in 0..ROUNDS {
+        if flagged.is_empty() {
+            break;
+        }
+        let mut flips = 0;
+        for &t in &flagged {
+            if uncross_by_flip(mesh, &mesh.incidence(), t) {
+                flips += 1;
+            }
+        }
+        report.flips += flips;
+        let incidence = mesh.incidence();
+        let mut verts: Vec<u32> = flagged.iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| mesh.role[u as usize] == Role::Free).collect();
+        verts.sort_unstable();
+        verts.dedup();
+        let mut moved = 0;
+        for v in verts {
+            if let Some((q, x, face)) = uncross_vertex(mesh, &incidence, v as usize, lift) {
+                mesh.plane[v as usize] = q;
+                mesh.position[v as usize] = x;
+                mesh.hint[v as usize] = face;
+                moved += 1;
+            }
+        }
+        report.moves += moved;
+        flagged = crossing(mesh);
+        if moved + flips == 0 {
+            break;
+        }
+    }
+    report.after = flagged.len();
+    report
+}
