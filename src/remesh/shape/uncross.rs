@@ -15,11 +15,11 @@
 use super::smooth::{relax_vertex, ring_valid_in_plane};
 use super::state::{edge_faces, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
 use crate::metrics::self_intersection::{face_pair_intersects, self_intersecting_faces};
-use crate::mesh::geometry::triangle_area;
+use crate::mesh::geometry::{cross, dot, norm, sub, triangle_area};
 use crate::mesh::TriMesh;
 
 /// Rounds of detection and moves.
-const ROUNDS: usize = 6;
+const ROUNDS: usize = 10;
 
 /// Rings around a vertex whose faces are tested against its own.
 const RINGS: usize = 3;
@@ -27,6 +27,13 @@ const RINGS: usize = 3;
 /// Degrees: a move may lower the smallest angle of a vertex's faces to no less than this (or
 /// their smallest angle before the move, if lower).
 const MIN_ANGLE: f64 = 15.0;
+
+/// Smallest gain (radians) of a smallest angle for a move or flip made for it alone.
+const MIN_GAIN: f64 = 1e-3;
+
+/// Degrees: the bend between a pair's normals that a flip made for an angle alone may reach
+/// (the shape stage's crease bound).
+const CREASE: f64 = 60.0;
 
 /// Fractions of the way to the planar neighbour centroid that are tried.
 const FRACTIONS: [f64; 5] = [1.0, 0.75, 0.5, 0.25, 0.1];
@@ -42,6 +49,10 @@ pub struct UncrossReport {
     pub moves: usize,
     /// Edge flips made.
     pub flips: usize,
+    /// Faces with an angle below 15 degrees before the pass.
+    pub slivers_before: usize,
+    /// Faces with an angle below 15 degrees after it.
+    pub slivers_after: usize,
 }
 
 /// The faces within [`RINGS`] rings of vertex `v`, sorted.
@@ -90,13 +101,10 @@ fn local_crossings(mesh: &Shaping, ring: &[u32], near: &[u32], v: usize, x: [f64
 
 /// The best move of free vertex `v` that lowers its local crossing count: planar point,
 /// surface point and hint.
-fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &SurfaceLift) -> Option<([f64; 2], [f64; 3], u32)> {
+fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &SurfaceLift, slivers: bool) -> Option<([f64; 2], [f64; 3], u32)> {
     let ring = incidence.of(v);
     let near = faces_around(mesh, incidence, v);
     let now = local_crossings(mesh, ring, &near, v, mesh.position[v]);
-    if now == 0 {
-        return None;
-    }
     // The planar centroid of the neighbours.
     let (mut c, mut k) = ([0.0f64; 2], 0.0);
     for &t in ring {
@@ -118,7 +126,11 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
             .fold(f64::INFINITY, f64::min)
     };
     // A move may not leave a sliver the ring did not have.
-    let floor = ring_angle(mesh.position[v]).min(MIN_ANGLE.to_radians());
+    let angle_now = ring_angle(mesh.position[v]);
+    let floor = angle_now.min(MIN_ANGLE.to_radians());
+    if now == 0 && !(slivers && angle_now < MIN_ANGLE.to_radians()) {
+        return None;
+    }
     let mut candidates: Vec<[f64; 2]> = Vec::new();
     if k > 0.0 {
         let c = [c[0] / k, c[1] / k];
@@ -126,6 +138,15 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
     }
     if let Some((q, _, _)) = relax_vertex(mesh, incidence, v, lift, &|_| 1.0) {
         candidates.push(q);
+    }
+    // Towards each neighbour: a fold may open in one direction only.
+    for &t in ring {
+        for &u in &mesh.faces[t as usize] {
+            if u as usize != v && mesh.planar(u) {
+                let p = mesh.plane[u as usize];
+                candidates.extend([0.3, 0.15].map(|s| [q0[0] + s * (p[0] - q0[0]), q0[1] + s * (p[1] - q0[1])]));
+            }
+        }
     }
     let mut best: Option<(usize, f64, [f64; 2], [f64; 3], u32)> = None;
     for q in candidates {
@@ -138,8 +159,10 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
             continue;
         }
         let count = local_crossings(mesh, ring, &near, v, x);
-        // Fewest crossings first, then the best-shaped ring.
-        if count < now && best.as_ref().is_none_or(|b| count < b.0 || (count == b.0 && angle > b.1)) {
+        // Fewer crossings, or as many and a larger smallest angle; the fewest crossings
+        // first, then the best-shaped ring.
+        let better = count < now || (slivers && count == now && angle > angle_now + MIN_GAIN);
+        if better && best.as_ref().is_none_or(|b| count < b.0 || (count == b.0 && angle > b.1)) {
             best = Some((count, angle, q, x, face));
         }
     }
@@ -149,7 +172,7 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
 /// Flip an edge of crossing face `t` if that lowers the crossings among the faces around it,
 /// keeps both new faces oriented in the plane and leaves no smaller angle than the pair had
 /// (or [`MIN_ANGLE`]). Returns whether it flipped.
-fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32) -> bool {
+fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: bool) -> bool {
     let edges = edge_faces(&mesh.faces);
     let f = mesh.faces[t as usize];
     for k in 0..3 {
@@ -174,9 +197,18 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32) -> bool {
             continue;
         }
         let worst = |fs: &[[[f64; 3]; 3]; 2]| fs.iter().map(|p| smallest_angle(p[0], p[1], p[2])).fold(f64::INFINITY, f64::min);
-        if worst(&new_faces) < worst(&old_faces).min(MIN_ANGLE.to_radians()) {
+        let (angle_old, angle_new) = (worst(&old_faces), worst(&new_faces));
+        if angle_new < angle_old.min(MIN_ANGLE.to_radians()) {
             continue;
         }
+        // A sliver flip (no crossing removed) may bend the pair no more than the crease bound
+        // or than it was bent.
+        let bend = |fs: &[[[f64; 3]; 3]; 2]| {
+            let n = fs.map(|p| cross(sub(p[1], p[0]), sub(p[2], p[0])));
+            let c = dot(n[0], n[1]) / (norm(n[0]) * norm(n[1]));
+            c.clamp(-1.0, 1.0).acos()
+        };
+        let sliver_gain = slivers && angle_old < MIN_ANGLE.to_radians() && angle_new > angle_old + MIN_GAIN && bend(&new_faces) <= bend(&old_faces).max(CREASE.to_radians());
         let mut near = faces_around(mesh, incidence, a as usize);
         near.extend(faces_around(mesh, incidence, b as usize));
         near.sort_unstable();
@@ -185,7 +217,8 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32) -> bool {
         let (old1, old2) = (mesh.faces[t1 as usize], mesh.faces[t2 as usize]);
         mesh.faces[t1 as usize] = [c, a, d];
         mesh.faces[t2 as usize] = [d, b, c];
-        if local_crossings(mesh, &[t1, t2], &near, usize::MAX, [0.0; 3]) < before {
+        let after = local_crossings(mesh, &[t1, t2], &near, usize::MAX, [0.0; 3]);
+        if after < before || (after == before && sliver_gain) {
             return true;
         }
         mesh.faces[t1 as usize] = old1;
@@ -198,38 +231,55 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32) -> bool {
 /// move (at most [`ROUNDS`] rounds). Deterministic: vertices are visited in index order.
 pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift) -> UncrossReport {
     let crossing = |mesh: &Shaping| self_intersecting_faces(&TriMesh::new(mesh.position.clone(), mesh.faces.clone()));
-    let mut flagged = crossing(mesh);
-    let mut report = UncrossReport { before: flagged.len(), after: flagged.len(), ..Default::default() };
-    for _ in 0..ROUNDS {
-        if flagged.is_empty() {
-            break;
-        }
-        let mut flips = 0;
-        for &t in &flagged {
-            if uncross_by_flip(mesh, &mesh.incidence(), t) {
-                flips += 1;
+    let slivers = |mesh: &Shaping| -> Vec<u32> {
+        (0..mesh.faces.len() as u32)
+            .filter(|&t| {
+                let f = mesh.faces[t as usize];
+                f.iter().all(|&u| mesh.planar(u)) && {
+                    let p = f.map(|u| mesh.position[u as usize]);
+                    smallest_angle(p[0], p[1], p[2]) < MIN_ANGLE.to_radians()
+                }
+            })
+            .collect()
+    };
+    let (before, slivers_before) = (crossing(mesh).len(), slivers(mesh).len());
+    let mut report = UncrossReport { before, after: before, slivers_before, slivers_after: slivers_before, ..Default::default() };
+    // Slivers first (a move or flip for an angle may not add a local crossing), then the
+    // crossings (a move or flip for a crossing may not leave an angle below the bound).
+    for sliver_phase in [true, false] {
+        let flag = |mesh: &Shaping| if sliver_phase { slivers(mesh) } else { crossing(mesh) };
+        let mut flagged = flag(mesh);
+        for _ in 0..ROUNDS {
+            if flagged.is_empty() {
+                break;
             }
-        }
-        report.flips += flips;
-        let incidence = mesh.incidence();
-        let mut verts: Vec<u32> = flagged.iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| mesh.role[u as usize] == Role::Free).collect();
-        verts.sort_unstable();
-        verts.dedup();
-        let mut moved = 0;
-        for v in verts {
-            if let Some((q, x, face)) = uncross_vertex(mesh, &incidence, v as usize, lift) {
-                mesh.plane[v as usize] = q;
-                mesh.position[v as usize] = x;
-                mesh.hint[v as usize] = face;
-                moved += 1;
+            let mut flips = 0;
+            for &t in &flagged {
+                if uncross_by_flip(mesh, &mesh.incidence(), t, sliver_phase) {
+                    flips += 1;
+                }
             }
-        }
-        report.moves += moved;
-        flagged = crossing(mesh);
-        if moved + flips == 0 {
-            break;
+            report.flips += flips;
+            let incidence = mesh.incidence();
+            let mut verts: Vec<u32> = flagged.iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| mesh.role[u as usize] == Role::Free).collect();
+            verts.sort_unstable();
+            verts.dedup();
+            let mut moved = 0;
+            for v in verts {
+                if let Some((q, x, face)) = uncross_vertex(mesh, &incidence, v as usize, lift, sliver_phase) {
+                    mesh.plane[v as usize] = q;
+                    mesh.position[v as usize] = x;
+                    mesh.hint[v as usize] = face;
+                    moved += 1;
+                }
+            }
+            report.moves += moved;
+            flagged = flag(mesh);
+            if moved + flips == 0 {
+                break;
+            }
         }
     }
-    report.after = flagged.len();
+    (report.after, report.slivers_after) = (crossing(mesh).len(), slivers(mesh).len());
     report
 }
