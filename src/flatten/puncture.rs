@@ -13,6 +13,11 @@
 //! ellipsoid of 30k vertices mapped at mean |d_area| 16.6, whatever `lambda`.
 
 use crate::mesh::geometry::{add, dot, norm, scale, sub, triangle_area};
+use nalgebra::{Matrix3, SymmetricEigen, Vector3};
+
+/// QR sweeps allowed to the 3x3 eigenproblem (a few suffice; a bound keeps a pathological
+/// matrix from looping).
+const MAX_EIGEN_ITERATIONS: usize = 100;
 
 /// Options of the puncture.
 #[derive(Debug, Clone)]
@@ -52,83 +57,49 @@ pub struct Puncture {
     pub axis: [f64; 3],
 }
 
-/// Area-weighted centroid and principal axis (largest variance) of a surface. The axis sign
-/// is chosen with a non-negative `Z` component (then `Y`, then `X`), so an input already
-/// standing along `Z` keeps its bottom at the bottom.
+/// Area-weighted centroid and principal axis (largest variance) of a surface: the
+/// eigenvector of the largest eigenvalue of the vertex-area-weighted covariance, by nalgebra's
+/// `SymmetricEigen`. The axis sign is chosen with a non-negative `Z` component (then `Y`,
+/// then `X`), so an input already standing along `Z` keeps its bottom at the bottom.
 pub fn principal_axis(vertices: &[[f64; 3]], faces: &[[u32; 3]]) -> ([f64; 3], [f64; 3]) {
     let mut total = 0.0;
-    let mut c = [0.0; 3];
-    let mut m2 = [[0.0; 3]; 3];
+    let mut c = Vector3::zeros();
+    let mut m2 = Matrix3::zeros();
     for f in faces {
         let p = f.map(|v| vertices[v as usize]);
         let a = triangle_area(p[0], p[1], p[2]);
         total += a;
-        for q in p {
-            c = add(c, scale(q, a / 3.0));
-            for i in 0..3 {
-                for j in 0..3 {
-                    m2[i][j] += a / 3.0 * q[i] * q[j];
-                }
-            }
+        for q in p.map(Vector3::from) {
+            let w = q * (a / 3.0);
+            c += w;
+            m2 += w * q.transpose();
         }
     }
     if total <= 0.0 {
         return ([0.0; 3], [0.0, 0.0, 1.0]);
     }
-    c = scale(c, 1.0 / total);
-    let mut cov = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            cov[i][j] = m2[i][j] / total - c[i] * c[j];
-        }
-    }
+    c *= 1.0 / total;
+    let cov = m2 / total - c * c.transpose();
     let mut axis = dominant_eigenvector(cov);
     let sign = if axis[2] != 0.0 { axis[2] } else if axis[1] != 0.0 { axis[1] } else { axis[0] };
     if sign < 0.0 {
-        axis = scale(axis, -1.0);
+        axis = -axis;
     }
-    (c, axis)
+    (c.into(), axis.into())
 }
 
-/// Eigenvector of the largest eigenvalue of a symmetric 3x3 matrix (cyclic Jacobi).
-fn dominant_eigenvector(mut a: [[f64; 3]; 3]) -> [f64; 3] {
-    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    for _ in 0..50 {
-        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
-        if off < 1e-15 * (a[0][0].abs() + a[1][1].abs() + a[2][2].abs()).max(1e-300) {
-            break;
-        }
-        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
-            if a[p][q] == 0.0 {
-                continue;
-            }
-            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-            let t = if theta == 0.0 { 1.0 } else { t };
-            let cs = 1.0 / (t * t + 1.0).sqrt();
-            let sn = t * cs;
-            // A <- J^T A J with the rotation in the (p, q) plane.
-            for k in 0..3 {
-                let (akp, akq) = (a[k][p], a[k][q]);
-                a[k][p] = cs * akp - sn * akq;
-                a[k][q] = sn * akp + cs * akq;
-            }
-            for k in 0..3 {
-                let (apk, aqk) = (a[p][k], a[q][k]);
-                a[p][k] = cs * apk - sn * aqk;
-                a[q][k] = sn * apk + cs * aqk;
-            }
-            for row in v.iter_mut() {
-                let (vp, vq) = (row[p], row[q]);
-                row[p] = cs * vp - sn * vq;
-                row[q] = sn * vp + cs * vq;
-            }
-        }
+/// Unit eigenvector of the largest eigenvalue of the symmetric `cov`; `Z` for a matrix that
+/// is not finite or does not converge (`SymmetricEigen::new` would loop or panic).
+fn dominant_eigenvector(cov: Matrix3<f64>) -> Vector3<f64> {
+    if !cov.iter().all(|x| x.is_finite()) {
+        return Vector3::z();
     }
-    let k = (0..3).max_by(|&i, &j| a[i][i].total_cmp(&a[j][j])).unwrap_or(0);
-    let e = [v[0][k], v[1][k], v[2][k]];
-    let n = norm(e);
-    if n > 0.0 { scale(e, 1.0 / n) } else { [0.0, 0.0, 1.0] }
+    let Some(eigen) = SymmetricEigen::try_new(cov, f64::EPSILON, MAX_EIGEN_ITERATIONS) else {
+        return Vector3::z();
+    };
+    let e = eigen.eigenvectors.column(eigen.eigenvalues.imax()).into_owned();
+    let n = e.norm();
+    if n > 0.0 { e / n } else { Vector3::z() }
 }
 
 /// Choose the quadrilateral to puncture. `edges` lists interior edges `(a, b, f0, f1)` where

@@ -1,49 +1,58 @@
 //! Small vector helpers and per-face / per-vertex geometry (areas, angles).
+//!
+//! The arithmetic is nalgebra's `Vector3` (issue 30). A mesh stores its points as
+//! `[f64; 3]` (the layout of the readers, the writers and the C ABI's arrays), so these
+//! helpers take and return `[f64; 3]` and convert by value, without allocating; the many
+//! call sites that read a mesh's points stay as they are. Kernels with more algebra than a
+//! sum or a product (the puncture's principal axis, the Jacobians of the distortion
+//! measures and of the remesh's one-rings) use nalgebra's types directly. The helpers give
+//! the same bits as the hand-written arithmetic they replaced (nalgebra's `dot`, `cross` and
+//! `norm` on 3-vectors evaluate in the same order; tests/geometry_kernels.rs checks it), so
+//! `param` and `remesh` write the same bytes (docs/dependencies.md).
+
+use nalgebra::Vector3;
 
 /// `a - b`.
 #[inline]
 pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    (Vector3::from(a) - Vector3::from(b)).into()
 }
 
 /// `a + b`.
 #[inline]
 pub fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    (Vector3::from(a) + Vector3::from(b)).into()
 }
 
 /// `s * a`.
 #[inline]
 pub fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
-    [a[0] * s, a[1] * s, a[2] * s]
+    (Vector3::from(a) * s).into()
 }
 
 /// Dot product.
 #[inline]
 pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    Vector3::from(a).dot(&Vector3::from(b))
 }
 
 /// Cross product.
 #[inline]
 pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    Vector3::from(a).cross(&Vector3::from(b)).into()
 }
 
 /// Euclidean norm.
 #[inline]
 pub fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
+    Vector3::from(a).norm()
 }
 
 /// Area of the triangle `abc`.
 #[inline]
 pub fn triangle_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    0.5 * norm(cross(sub(b, a), sub(c, a)))
+    let a = Vector3::from(a);
+    0.5 * (Vector3::from(b) - a).cross(&(Vector3::from(c) - a)).norm()
 }
 
 /// Signed area of the planar triangle `abc` (positive when counter-clockwise).
@@ -58,12 +67,12 @@ pub fn signed_area_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
 /// edge has zero length gets angle 0.
 #[inline]
 pub fn triangle_angles(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
-    let corner = |p: [f64; 3], q: [f64; 3], r: [f64; 3]| {
-        let u = sub(q, p);
-        let v = sub(r, p);
-        norm(cross(u, v)).atan2(dot(u, v))
+    let corner = |p: &Vector3<f64>, q: &Vector3<f64>, r: &Vector3<f64>| {
+        let (u, v) = (q - p, r - p);
+        u.cross(&v).norm().atan2(u.dot(&v))
     };
-    [corner(a, b, c), corner(b, c, a), corner(c, a, b)]
+    let [a, b, c] = [a, b, c].map(Vector3::from);
+    [corner(&a, &b, &c), corner(&b, &c, &a), corner(&c, &a, &b)]
 }
 
 /// Area of every face.

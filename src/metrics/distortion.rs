@@ -4,7 +4,8 @@
 //! `|mu|` of each face's affine map (Sec. 2.1), whose area-weighted mean square is the radius
 //! search objective (Eq. 12).
 
-use crate::mesh::geometry::{cross, dot, norm, sub, triangle_angles};
+use crate::mesh::geometry::{triangle_angles, triangle_area};
+use nalgebra::{Matrix2, Vector2, Vector3};
 
 /// Summary statistics of a distortion measure.
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
@@ -44,9 +45,7 @@ impl Stats {
 /// Area distortion of each face between `source` and `target` positions of the same faces.
 /// Faces of zero area on either side give `NaN` (left out of [`Stats`]).
 pub fn area_distortion(source: &[[f64; 3]], target: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<f64> {
-    let area = |p: &[[f64; 3]], f: &[u32; 3]| {
-        0.5 * norm(cross(sub(p[f[1] as usize], p[f[0] as usize]), sub(p[f[2] as usize], p[f[0] as usize])))
-    };
+    let area = |p: &[[f64; 3]], f: &[u32; 3]| triangle_area(p[f[0] as usize], p[f[1] as usize], p[f[2] as usize]);
     let a_src: Vec<f64> = faces.iter().map(|f| area(source, f)).collect();
     let a_tgt: Vec<f64> = faces.iter().map(|f| area(target, f)).collect();
     let s_src: f64 = a_src.iter().sum();
@@ -75,24 +74,24 @@ pub fn angle_distortion(source: &[[f64; 3]], target: &[[f64; 3]], faces: &[[u32;
 /// `|mu|` of the affine map from the surface triangle `p` onto the planar triangle `q`.
 /// `NaN` when either triangle is degenerate.
 pub fn beltrami_abs(p: [[f64; 3]; 3], q: [[f64; 2]; 3]) -> f64 {
-    let e1 = sub(p[1], p[0]);
-    let e2 = sub(p[2], p[0]);
-    let l1 = norm(e1);
-    let nrm = cross(e1, e2);
-    let area2 = norm(nrm);
+    let [p0, p1, p2] = p.map(Vector3::from);
+    let (e1, e2) = (p1 - p0, p2 - p0);
+    let l1 = e1.norm();
+    let area2 = e1.cross(&e2).norm();
     if l1 == 0.0 || area2 == 0.0 {
         return f64::NAN;
     }
-    // Local frame: P1 = (l1, 0), P2 = (x2, y2).
-    let x2 = dot(e2, e1) / l1;
-    let y2 = area2 / l1;
-    // Jacobian J = [q1 - q0, q2 - q0] * inv([[l1, x2], [0, y2]]).
-    let (u1, v1) = (q[1][0] - q[0][0], q[1][1] - q[0][1]);
-    let (u2, v2) = (q[2][0] - q[0][0], q[2][1] - q[0][1]);
-    let a = u1 / l1; // du/dx
-    let b = (u2 - a * x2) / y2; // du/dy
-    let c = v1 / l1; // dv/dx
-    let d = (v2 - c * x2) / y2; // dv/dy
+    // The surface triangle in a frame of its plane, edges (l1, 0) and (x2, y2): the columns
+    // of the upper triangular `frame`; the planar edges are the columns of `planar`.
+    let frame = Matrix2::new(l1, e2.dot(&e1) / l1, 0.0, area2 / l1);
+    let [q0, q1, q2] = q.map(Vector2::from);
+    let planar = Matrix2::from_columns(&[q1 - q0, q2 - q0]);
+    // The affine map's Jacobian J solves J frame = planar; as frame^T J^T = planar^T it is a
+    // forward substitution (exact divisions by l1 and y2, no inverse formed).
+    let Some(jt) = frame.transpose().solve_lower_triangular(&planar.transpose()) else {
+        return f64::NAN;
+    };
+    let (a, b, c, d) = (jt[(0, 0)], jt[(1, 0)], jt[(0, 1)], jt[(1, 1)]);
     // f_z = ((a + d) + i (c - b)) / 2, f_zbar = ((a - d) + i (c + b)) / 2.
     let fz = ((a + d).powi(2) + (c - b).powi(2)).sqrt();
     let fzb = ((a - d).powi(2) + (c + b).powi(2)).sqrt();

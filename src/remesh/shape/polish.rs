@@ -11,6 +11,7 @@
 use super::smooth::{ring_faces_same_side, ring_jacobian, ring_valid_in_plane};
 use super::state::{Incidence, Shaping, SurfaceLift};
 use crate::mesh::geometry::{cross, dot, norm, sub};
+use nalgebra::{Matrix2, Vector2, Vector3};
 
 /// Halvings of a step before the vertex stays.
 const HALVINGS: usize = 6;
@@ -68,28 +69,24 @@ pub(crate) fn polish_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lif
     let x0 = mesh.position[v];
     let j = ring_jacobian(mesh, ring, v)?;
     // Gauss-Newton on the planar position: residual gradients g = J^T grad.
-    let (mut h, mut g, mut e0) = ([[0.0f64; 2]; 2], [0.0f64; 2], 0.0);
+    let (mut h, mut g, mut e0) = (Matrix2::zeros(), Vector2::zeros(), 0.0);
     for &t in ring {
         let (a, b) = others(mesh, t, v);
         let (r, grad) = residuals(x0, a, b, ln_target(t as usize), sqrt_mu)?;
         for k in 0..2 {
-            let gp = [0, 1].map(|c| (0..3).map(|i| j[i][c] * grad[k][i]).sum::<f64>());
-            for p in 0..2 {
-                g[p] += gp[p] * r[k];
-                for q in 0..2 {
-                    h[p][q] += gp[p] * gp[q];
-                }
-            }
+            let gp = j.tr_mul(&Vector3::from(grad[k]));
+            g += gp * r[k];
+            h += gp * gp.transpose();
             e0 += r[k] * r[k];
         }
     }
-    let eps = 1e-9 * (h[0][0] + h[1][1]);
-    let (h00, h11) = (h[0][0] + eps, h[1][1] + eps);
-    let det = h00 * h11 - h[0][1] * h[1][0];
+    let eps = 1e-9 * (h[(0, 0)] + h[(1, 1)]);
+    let (h00, h11) = (h[(0, 0)] + eps, h[(1, 1)] + eps);
+    let det = h00 * h11 - h[(0, 1)] * h[(1, 0)];
     if !(det > 0.0) {
         return None;
     }
-    let dq = [-(h11 * g[0] - h[0][1] * g[1]) / det, -(h00 * g[1] - h[1][0] * g[0]) / det];
+    let dq = [-(h11 * g[0] - h[(0, 1)] * g[1]) / det, -(h00 * g[1] - h[(1, 0)] * g[0]) / det];
     if !(dq[0].is_finite() && dq[1].is_finite()) {
         return None;
     }

@@ -11,6 +11,7 @@
 
 use super::state::{Incidence, Shaping, SurfaceLift};
 use crate::mesh::geometry::{cross, dot, norm, sub, triangle_area};
+use nalgebra::{Matrix2, Matrix3x2, Vector2, Vector3};
 
 /// Halvings of a move before the vertex stays.
 const HALVINGS: usize = 5;
@@ -51,14 +52,14 @@ pub(crate) fn relax_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift
     let dn = dot(d, normal);
     let d = [d[0] - dn * normal[0], d[1] - dn * normal[1], d[2] - dn * normal[2]];
     let j = ring_jacobian(mesh, ring, v)?;
-    // Planar step dq minimising |J dq - d|: (J^T J) dq = J^T d.
-    let jtj = [[0, 1].map(|c| (0..3).map(|i| j[i][0] * j[i][c]).sum::<f64>()), [0, 1].map(|c| (0..3).map(|i| j[i][1] * j[i][c]).sum::<f64>())];
-    let jtd = [0, 1].map(|c| (0..3).map(|i| j[i][c] * d[i]).sum::<f64>());
-    let det2 = jtj[0][0] * jtj[1][1] - jtj[0][1] * jtj[1][0];
+    // Planar step dq minimising |J dq - d|: (J^T J) dq = J^T d, by Cramer's rule (the bits
+    // of the remesh depend on its rounding; docs/dependencies.md).
+    let (jtj, jtd) = (j.tr_mul(&j), j.tr_mul(&Vector3::from(d)));
+    let det2 = jtj.determinant();
     if !(det2 > 0.0) {
         return None;
     }
-    let dq = [(jtj[1][1] * jtd[0] - jtj[0][1] * jtd[1]) / det2, (jtj[0][0] * jtd[1] - jtj[1][0] * jtd[0]) / det2];
+    let dq = [(jtj[(1, 1)] * jtd[0] - jtj[(0, 1)] * jtd[1]) / det2, (jtj[(0, 0)] * jtd[1] - jtj[(1, 0)] * jtd[0]) / det2];
     if !(dq[0].is_finite() && dq[1].is_finite()) {
         return None;
     }
@@ -80,9 +81,9 @@ pub(crate) fn relax_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift
 /// The inverse map's differential at vertex `v` (3x2: planar edge to surface edge), fitted by
 /// least squares to the edges from `v` to the corners of its faces `ring`: `J = N M^-1` with
 /// `M = sum e2 e2^T`, `N = sum e3 e2^T`. `None` when the planar edges do not span the plane.
-pub(crate) fn ring_jacobian(mesh: &Shaping, ring: &[u32], v: usize) -> Option<[[f64; 2]; 3]> {
-    let (x0, q0) = (mesh.position[v], mesh.plane[v]);
-    let (mut m, mut nmat) = ([[0.0f64; 2]; 2], [[0.0f64; 2]; 3]);
+pub(crate) fn ring_jacobian(mesh: &Shaping, ring: &[u32], v: usize) -> Option<Matrix3x2<f64>> {
+    let (x0, q0) = (Vector3::from(mesh.position[v]), Vector2::from(mesh.plane[v]));
+    let (mut m, mut n) = (Matrix2::zeros(), Matrix3x2::zeros());
     for &t in ring {
         for &u in &mesh.faces[t as usize] {
             // Not v itself, nor a vertex without a planar point (a closed surface's merged
@@ -90,27 +91,17 @@ pub(crate) fn ring_jacobian(mesh: &Shaping, ring: &[u32], v: usize) -> Option<[[
             if u as usize == v || !mesh.planar(u) {
                 continue;
             }
-            let e2 = [mesh.plane[u as usize][0] - q0[0], mesh.plane[u as usize][1] - q0[1]];
-            let e3 = sub(mesh.position[u as usize], x0);
-            for i in 0..2 {
-                for j in 0..2 {
-                    m[i][j] += e2[i] * e2[j];
-                }
-            }
-            for i in 0..3 {
-                for j in 0..2 {
-                    nmat[i][j] += e3[i] * e2[j];
-                }
-            }
+            let e2 = Vector2::from(mesh.plane[u as usize]) - q0;
+            let e3 = Vector3::from(mesh.position[u as usize]) - x0;
+            m += e2 * e2.transpose();
+            n += e3 * e2.transpose();
         }
     }
-    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-    if !(det > 0.0) {
+    if !(m.determinant() > 0.0) {
         return None;
     }
-    let minv = [[m[1][1] / det, -m[0][1] / det], [-m[1][0] / det, m[0][0] / det]];
-    let j: [[f64; 2]; 3] = std::array::from_fn(|i| [0, 1].map(|c| nmat[i][0] * minv[0][c] + nmat[i][1] * minv[1][c]));
-    j.iter().flatten().all(|x| x.is_finite()).then_some(j)
+    let j = n * m.try_inverse()?;
+    j.iter().all(|x| x.is_finite()).then_some(j)
 }
 
 /// Whether the faces `ring` around `v` keep the planar orientation with `v` at `q`, each
