@@ -101,3 +101,33 @@ fn map_without_last(map: &capmesh::CapMap) -> capmesh::CapMap {
     m.plane.pop();
     m
 }
+
+#[test]
+fn errors_from_the_design_matrix_equal_the_errors_of_a_fresh_evaluation() {
+    // fit_with_errors_in measures the errors and the reconstruction from the fit's own design
+    // matrix; order_errors and reconstruct evaluate the basis again. Same numbers, both bases.
+    use capmesh::harmonics::{fit_all_orders_in, fit_with_errors_in, order_errors, BasisKind, CapBoundary};
+    let mesh = helmet();
+    let map = capmesh::parameterize(&mesh, &capmesh::ParamOptions::default(), &NoProgress).unwrap();
+    let z_star = map.report.z_star.unwrap();
+    for kind in [BasisKind::Adaptive, BasisKind::SphericalCap(CapBoundary::Neumann)] {
+        let together = fit_with_errors_in(kind, &map.cap, &mesh.vertices, z_star, 8).unwrap();
+        let fits = fit_all_orders_in(kind, &map.cap, &mesh.vertices, z_star, 8).unwrap();
+        assert_eq!(together.fits.len(), fits.len());
+        for (a, b) in together.fits.iter().zip(&fits) {
+            assert_eq!((a.basis, a.z_star, a.order, a.coefficients.len()), (b.basis, b.z_star, b.order, b.coefficients.len()));
+            let worst = a.coefficients.iter().zip(&b.coefficients).flat_map(|(x, y)| (0..3).map(move |d| (x[d] - y[d]).abs())).fold(0.0f64, f64::max);
+            assert!(worst < 1e-9, "{kind:?} order {}: coefficients differ by {worst}", a.order);
+        }
+        let errors = order_errors(&fits, &map.cap, &mesh.vertices).unwrap();
+        assert_eq!(together.errors.len(), 9);
+        for (a, b) in together.errors.iter().zip(&errors) {
+            assert_eq!(a.order, b.order);
+            assert!((a.mean_relative - b.mean_relative).abs() <= 1e-9 * b.mean_relative, "{kind:?} {a:?} {b:?}");
+            assert!((a.max_relative - b.max_relative).abs() <= 1e-9 * b.max_relative, "{kind:?} {a:?} {b:?}");
+        }
+        let again = fits[8].reconstruct(&map.cap, 8).unwrap();
+        let worst = together.reconstructed.iter().zip(&again).flat_map(|(a, b)| (0..3).map(move |d| (a[d] - b[d]).abs())).fold(0.0f64, f64::max);
+        assert!(worst < 1e-9, "{kind:?}: reconstructions differ by {worst}");
+    }
+}

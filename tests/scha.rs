@@ -61,14 +61,40 @@ fn as_the_cap_grows_to_the_sphere_the_degrees_tend_to_the_integers() {
 #[test]
 fn on_the_whole_sphere_the_neumann_basis_is_the_spherical_harmonics() {
     const ORDER: usize = 10;
-    let scha = SchaBasis::new(-1.0, ORDER, CapBoundary::Neumann).unwrap();
+    // Z* = -1 itself takes the integer-degree recurrence; the Rayleigh-Ritz functions of a cap
+    // just short of the sphere must agree with it (the limit, computed the other way).
     let ah = CapBasis::new(-1.0, ORDER).unwrap();
+    let sphere = SchaBasis::new(-1.0, ORDER, CapBoundary::Neumann).unwrap();
+    let almost = SchaBasis::new(-1.0 + 1e-12, ORDER, CapBoundary::Neumann).unwrap();
     for (i, p) in [[0.0, 0.0, 1.0], [0.6, 0.0, 0.8], [0.36, -0.48, 0.8], [-0.5, 0.5, -0.5f64.sqrt()], [0.0, 0.6, -0.8]].into_iter().enumerate() {
-        let (a, b) = (scha.evaluate(p).unwrap(), ah.evaluate(p).unwrap());
-        for (j, (x, y)) in a.iter().zip(&b).enumerate() {
-            assert!((x - y).abs() < 1e-9 * (1.0 + y.abs()), "point {i}, function {j}: {x} vs {y}");
+        let b = ah.evaluate(p).unwrap();
+        for (basis, tolerance) in [(&sphere, 1e-12), (&almost, 1e-6)] {
+            let a = basis.evaluate(p).unwrap();
+            for (j, (x, y)) in a.iter().zip(&b).enumerate() {
+                assert!((x - y).abs() < tolerance * (1.0 + y.abs()), "Z* = {}, point {i}, function {j}: {x} vs {y}", basis.z_star());
+            }
         }
     }
+}
+
+#[test]
+fn on_the_whole_sphere_every_rim_condition_gives_the_spherical_harmonics() {
+    // At Z* = -1 the rim is a point: no condition is left, the degrees are the integers and
+    // the functions the real spherical harmonics, for Neumann, Dirichlet and mixed alike
+    // (the basis of a closed surface, harmonics::scha::basis_cap).
+    const ORDER: usize = 12;
+    let ah = CapBasis::new(-1.0, ORDER).unwrap();
+    for boundary in [CapBoundary::Neumann, CapBoundary::Dirichlet, CapBoundary::Mixed] {
+        let basis = SchaBasis::new(-1.0, ORDER, boundary).unwrap();
+        for (k, m) in pairs(ORDER) {
+            assert_eq!(basis.degree(k, m), Some(k as f64), "{boundary:?} ({k}, {m})");
+        }
+        for p in [[0.0, 0.0, -1.0], [0.28, 0.96, 0.0], [-0.6, 0.0, -0.8]] {
+            assert_eq!(basis.evaluate(p).unwrap(), ah.evaluate(p).unwrap(), "{boundary:?} at {p:?}");
+        }
+    }
+    assert_eq!(capmesh::harmonics::scha::basis_cap(-0.99, true), -1.0);
+    assert_eq!(capmesh::harmonics::scha::basis_cap(-0.99, false), -0.99);
 }
 
 /// `2F1(a, b; c; z)` by its series (|z| < 1), and the series of `d/dz`.

@@ -14,6 +14,11 @@
 //! same as refitting at each order, not a truncation of the order-`N` coefficients (the basis is
 //! orthonormal on the cap, Eq. 22-24, but not on a finite point set).
 //!
+//! [`fit_with_errors_in`] also measures every order's reconstruction error and the top order's
+//! reconstruction from the same design matrix (one product with every order's coefficients side
+//! by side), so that the basis is evaluated once per point; [`order_errors`] and
+//! [`HarmonicFit::reconstruct`] evaluate it again, for fits from elsewhere.
+//!
 //! A column whose diagonal entry `|R_jj|` falls below `max(k, p) eps max|R_ii|` is reported as
 //! [`HarmonicsError::RankDeficient`] instead of producing huge coefficients.
 //!
@@ -127,6 +132,63 @@ pub fn fit_all_orders_in(
     z_star: f64,
     order: usize,
 ) -> Result<Vec<HarmonicFit>, HarmonicsError> {
+    Ok(solve(kind, cap_points, values, z_star, order)?.0)
+}
+
+/// The fits of every order (as [`fit_all_orders_in`]) with their reconstruction errors (as
+/// [`order_errors`]) and the order-`order` reconstruction at `cap_points` (as
+/// [`HarmonicFit::reconstruct`]), all from the one design matrix of the fit: the basis is
+/// evaluated once per point instead of three times (the dominant cost of a spherical cap
+/// basis, whose radial functions are polynomial expansions of a few dozen terms).
+pub fn fit_with_errors_in(
+    kind: BasisKind,
+    cap_points: &[[f64; 3]],
+    values: &[[f64; 3]],
+    z_star: f64,
+    order: usize,
+) -> Result<FitWithErrors, HarmonicsError> {
+    let (fits, design) = solve(kind, cap_points, values, z_star, order)?;
+    // Every order's coefficients side by side (zero past its own functions): one product
+    // gives every order's reconstruction at every point.
+    let p = design.ncols();
+    let stacked = Mat::from_fn(p, 3 * fits.len(), |j, col| {
+        let coefficients = &fits[col / 3].coefficients;
+        coefficients.get(j).map_or(0.0, |c| c[col % 3])
+    });
+    let product = &design * &stacked;
+    drop(design);
+    let orders = fits.len();
+    let distances: Vec<f64> = (0..values.len())
+        .flat_map(|i| {
+            let product = &product;
+            (0..orders).map(move |n| distance([product[(i, 3 * n)], product[(i, 3 * n + 1)], product[(i, 3 * n + 2)]], values[i]))
+        })
+        .collect();
+    let errors = summarize(&fits, &distances, values);
+    let top = 3 * (orders - 1);
+    let reconstructed = (0..values.len()).map(|i| [product[(i, top)], product[(i, top + 1)], product[(i, top + 2)]]).collect();
+    Ok(FitWithErrors { fits, errors, reconstructed })
+}
+
+/// What [`fit_with_errors_in`] returns.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitWithErrors {
+    /// The least-squares fit at every order `0..=order` (element `n` at order `n`).
+    pub fits: Vec<HarmonicFit>,
+    /// Each fit's reconstruction error, as [`order_errors`] measures it.
+    pub errors: Vec<OrderError>,
+    /// The order-`order` fit evaluated at the cap points.
+    pub reconstructed: Vec<[f64; 3]>,
+}
+
+/// The fits of every order and the design matrix they were solved from.
+fn solve(
+    kind: BasisKind,
+    cap_points: &[[f64; 3]],
+    values: &[[f64; 3]],
+    z_star: f64,
+    order: usize,
+) -> Result<(Vec<HarmonicFit>, Mat<f64>), HarmonicsError> {
     let basis = HarmonicBasis::new(kind, z_star, order)?;
     let (k, p) = (cap_points.len(), basis.len());
     if values.len() != k {
@@ -156,7 +218,6 @@ pub fn fit_all_orders_in(
 
     let design = design_matrix(&basis, &coords);
     let qr = Qr::new(design.as_ref());
-    drop(design);
 
     let r = qr.R();
     let largest = (0..p).map(|j| r[(j, j)].abs()).fold(0.0f64, f64::max);
@@ -211,7 +272,7 @@ pub fn fit_all_orders_in(
             coefficients,
         });
     }
-    Ok(fits)
+    Ok((fits, design))
 }
 
 impl HarmonicFit {
@@ -328,6 +389,13 @@ pub fn order_errors(
             out.into_iter()
         })
         .collect();
+    Ok(summarize(fits, &distances, original))
+}
+
+/// Mean and max of `distances[i * fits.len() + j]` (point `i` under fit `j`) per fit, also
+/// relative to the bounding-box diagonal of `original`.
+fn summarize(fits: &[HarmonicFit], distances: &[f64], original: &[[f64; 3]]) -> Vec<OrderError> {
+    let orders = fits.len();
     let diagonal = bounding_box_diagonal(original);
     let relative = |d: f64| {
         if diagonal > 0.0 {
@@ -338,8 +406,8 @@ pub fn order_errors(
             f64::INFINITY
         }
     };
-    let k = coords.len().max(1) as f64;
-    Ok(fits
+    let k = original.len().max(1) as f64;
+    fits
         .iter()
         .enumerate()
         .map(|(j, fit)| {
@@ -357,7 +425,7 @@ pub fn order_errors(
                 max_relative: relative(max),
             }
         })
-        .collect())
+        .collect()
 }
 
 /// Checked coordinates of every point (first bad point reported).

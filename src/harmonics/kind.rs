@@ -8,7 +8,9 @@
 //! | `SphericalCap(Dirichlet)` | `Theta(theta_c) = 0` | every term vanishes: the loop collapses to the origin |
 //! | `SphericalCap(Mixed)` | Neumann for `k - m` even, Dirichlet for `k - m` odd (Haines 1985) | fitted by the Neumann half |
 //!
-//! All have `(N + 1)^2` functions of orders `k <= N`, indexed `k^2 + k + m`.
+//! All have `(N + 1)^2` functions of orders `k <= N`, indexed `k^2 + k + m`. A closed surface
+//! has no rim (its cap's rim is the puncture): `SphericalCap` of any condition is then fitted on
+//! the whole sphere, the real spherical harmonics ([`super::scha::basis_cap`]).
 
 use serde::{Deserialize, Serialize};
 

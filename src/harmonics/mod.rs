@@ -53,7 +53,7 @@ pub use basis::{basis_degree, basis_index, basis_len, CapBasis};
 pub use error::HarmonicsError;
 pub use any_basis::HarmonicBasis;
 pub use cohort::{compare_groups, welch_t_test, CohortError, GroupComparison, GroupSummary, WelchTest};
-pub use fit::{fit, fit_all_orders, fit_all_orders_in, fit_in, order_errors, HarmonicFit, OrderError};
+pub use fit::{fit, fit_all_orders, fit_all_orders_in, fit_in, fit_with_errors_in, order_errors, FitWithErrors, HarmonicFit, OrderError};
 pub use kind::{BasisKind, CapBoundary};
 pub use resample::resample;
 pub use scha::SchaBasis;

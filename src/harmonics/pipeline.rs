@@ -4,9 +4,10 @@
 //!
 //! ```text
 //! param::parameterize -> CapMap { cap, report.z_star }
-//!   -> fit_all_orders (one QR)          -> HarmonicFit at order N
-//!   -> order_errors                     -> mean / max vertex distance per order n <= N
-//!   -> reconstruct(N)                   -> the input's connectivity at the order-N positions
+//!   -> fit_with_errors_in (one design matrix, one QR)
+//!        -> HarmonicFit at every order n <= N
+//!        -> mean / max vertex distance per order n <= N
+//!        -> the input's connectivity at the order-N positions
 //!   -> aspect_ratio, order_one_ellipsoid -> sigma_1 / sigma_3 of the order-1 representation
 //! ```
 //!
@@ -24,7 +25,9 @@
 //! boundary loop collapses to one point, at every order; the maximum error therefore stays near
 //! the size of the boundary loop while the mean error falls with `N`. The spherical cap
 //! harmonics (Neumann or mixed rim condition) keep the loop; the report's
-//! `boundary_max_relative` measures it.
+//! `boundary_max_relative` measures it. A closed surface has no rim (its cap's rim is the
+//! puncture): the spherical cap harmonics are then fitted on the whole sphere
+//! ([`super::scha::basis_cap`], `HarmonicsReport::basis_z_star = -1`).
 //!
 //! Vertices used by no face have no cap position: they are left out of the fit and of the
 //! errors and keep their input position in the reconstruction.
@@ -35,16 +38,17 @@ use serde::Serialize;
 
 use super::basis::basis_len;
 use super::cap_legendre::MAX_CAP_ORDER;
-use super::fit::{fit_all_orders_in, fit_in, order_errors, HarmonicFit, OrderError, MAX_DESIGN_ENTRIES};
+use super::fit::{fit_in, fit_with_errors_in, FitWithErrors, HarmonicFit, OrderError, MAX_DESIGN_ENTRIES};
 use super::kind::BasisKind;
 use super::legendre::MAX_ORDER;
 use super::resample::resample;
+use super::scha::basis_cap;
 use super::shape::{aspect_ratio_in, order_one_ellipsoid};
 use super::HarmonicsError;
 use crate::cap::CapMap;
 use crate::param::{parameterize, ParamOptions, ParamReport};
 use crate::error::Error;
-use crate::mesh::TriMesh;
+use crate::mesh::{SurfaceKind, TriMesh};
 use crate::progress::{self, Progress, Stage};
 
 /// Default largest order `N` of [`HarmonicsOptions`].
@@ -109,8 +113,11 @@ impl HarmonicsOptions {
 pub struct HarmonicsReport {
     /// The basis of the fit.
     pub basis: BasisKind,
-    /// The cap's lower bound `Z*` the surface was fitted on.
+    /// The parameterization's cap `Z >= Z*`.
     pub z_star: f64,
+    /// The cap of the basis: `z_star`, except for the spherical cap harmonics of a closed
+    /// surface, fitted on the whole sphere (`-1`; [`super::scha::basis_cap`]).
+    pub basis_z_star: f64,
     /// The largest order `N`.
     pub order: usize,
     /// Input vertices.
@@ -206,23 +213,28 @@ pub fn analyze_map(
             mesh.n_vertices()
         )));
     }
+    let closed = map.report.kind == SurfaceKind::ClosedSphere;
+    let basis_z_star = match kind {
+        BasisKind::Adaptive => z_star,
+        BasisKind::SphericalCap(_) => basis_cap(z_star, closed),
+    };
     let used = referenced(mesh);
     let cap: Vec<[f64; 3]> = used.iter().map(|&v| map.cap[v]).collect();
     let values: Vec<[f64; 3]> = used.iter().map(|&v| mesh.vertices[v]).collect();
 
     progress::check(progress, Stage::Harmonics, 0.0, &format!("fitting orders 0..={order}"))?;
-    let fits = fit_all_orders_in(kind, &cap, &values, z_star, order)?;
-    progress::check(progress, Stage::Harmonics, 0.5, "reconstruction errors")?;
-    let errors_by_order = order_errors(&fits, &cap, &values)?;
+    // One design matrix for the fits, their errors and the reconstruction.
+    let FitWithErrors { fits, errors: errors_by_order, reconstructed: positions } =
+        fit_with_errors_in(kind, &cap, &values, basis_z_star, order)?;
     let top = fits.last().cloned().ok_or(HarmonicsError::TooFewPoints {
         points: cap.len(),
         basis: basis_len(order),
         order,
     })?;
-    let positions = top.reconstruct(&cap, order)?;
+    progress::check(progress, Stage::Harmonics, 0.7, "reconstruction errors measured")?;
 
     progress::check(progress, Stage::Harmonics, 0.8, "order-1 aspect ratio")?;
-    let (ratio, singular_values) = match aspect_ratio_in(kind, &cap, &values, z_star) {
+    let (ratio, singular_values) = match aspect_ratio_in(kind, &cap, &values, basis_z_star) {
         Ok(a) => (a.ratio, a.singular_values),
         Err(HarmonicsError::DegenerateShape { singular_values }) => (f64::INFINITY, singular_values),
         Err(e) => return Err(e.into()),
@@ -230,7 +242,7 @@ pub fn analyze_map(
     let (ellipsoid_aspect_ratio, ellipsoid_semi_axes) = if kind == BasisKind::Adaptive {
         let order_one = match fits.get(1) {
             Some(f) => f.clone(),
-            None => fit_in(kind, &cap, &values, z_star, 1)?,
+            None => fit_in(kind, &cap, &values, basis_z_star, 1)?,
         };
         let ellipsoid = order_one_ellipsoid(&order_one)?;
         (ellipsoid.aspect_ratio(), ellipsoid.semi_axes)
@@ -259,6 +271,7 @@ pub fn analyze_map(
     let report = HarmonicsReport {
         basis: kind,
         z_star,
+        basis_z_star,
         order,
         vertices: mesh.n_vertices(),
         fitted_vertices: used.len(),

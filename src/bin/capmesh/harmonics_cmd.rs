@@ -78,7 +78,8 @@ const SCHA_DOC: &str = "position(X, Y, Z) = sum over 0 <= n <= order, -n <= m <=
      Theta_n^m is proportional to the Legendre function P_degree^-m(cos theta) of the listed non-integer \
      degree, regular at the pole, with integral over [z_star, 1] of Theta^2 d(cos theta) = 1 and positive \
      next to the pole; boundary: neumann dTheta/dtheta = 0 at theta_c = acos(z_star), dirichlet Theta = 0 \
-     there, mixed neumann for n - m even and dirichlet for n - m odd (capmesh::harmonics::scha)";
+     there, mixed neumann for n - m even and dirichlet for n - m odd; z_star = -1 (a closed surface, whose cap rim \
+     is the puncture): no rim, the real spherical harmonics of integer degree (capmesh::harmonics::scha)";
 
 fn coefficients_file<'a>(fit: &HarmonicFit, source: &'a str) -> Result<CoefficientsFile<'a>, String> {
     let basis = fit.basis().map_err(|e| e.to_string())?;
