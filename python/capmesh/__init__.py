@@ -5,6 +5,8 @@ Meshes are numpy arrays: vertices ``(n, 3)`` float32 or float64, faces ``(m, 3)`
 or uint32 (0-based). Options are named as the CLI's flags (``--open-lambda`` ->
 ``open_lambda``; ``--lambda`` -> ``lambda_``). Errors raise subclasses of
 :class:`CapmeshError` with the CLI's messages. Every computation releases the GIL.
+:meth:`CapMap.inverse` maps cap points back to the surface; :mod:`capmesh.cohort` runs the
+shape analysis of ``capmesh shape`` over a cohort, serially or on Dask (docs/python.md).
 """
 
 import json as _json
