@@ -5,14 +5,16 @@ Meshes are numpy arrays: vertices ``(n, 3)`` float32 or float64, faces ``(m, 3)`
 or uint32 (0-based). Options are named as the CLI's flags (``--open-lambda`` ->
 ``open_lambda``; ``--lambda`` -> ``lambda_``). Errors raise subclasses of
 :class:`CapmeshError` with the CLI's messages. Every computation releases the GIL.
+:meth:`CapMap.inverse` maps cap points back to the surface; :mod:`capmesh.cohort` runs the
+shape analysis of ``capmesh shape`` over a cohort, serially or on Dask (docs/python.md).
 """
 
 import json as _json
-from typing import Any, Callable, Dict, Optional, Tuple
+from typing import Any, Callable, Dict, NamedTuple, Optional, Tuple
 
 import numpy as _np
 
-from . import _capmesh
+from . import _capmesh, cohort  # noqa: F401  (cohort imports pandas and dask only when used)
 from ._capmesh import (  # noqa: F401  (re-exported)
     CapmeshError,
     Cancelled,
@@ -25,7 +27,7 @@ from ._capmesh import (  # noqa: F401  (re-exported)
 )
 
 __all__ = [
-    "CapMap", "parameterize", "remesh", "harmonics", "metrics", "read_mesh", "write_mesh",
+    "CapMap", "InversePoints", "cohort", "parameterize", "remesh", "harmonics", "metrics", "read_mesh", "write_mesh",
     "CapmeshError", "Cancelled", "ComputeError", "InputError", "InternalError", "MeshError",
     "ReadError", "WriteError",
 ]
@@ -51,16 +53,53 @@ def _faces(f):
     return a.astype(_np.int64, copy=False)
 
 
+class InversePoints(NamedTuple):
+    """The surface points of :meth:`CapMap.inverse`, one row per cap point asked for. A point
+    off the cap has face ``-1`` and NaN position and barycentric coordinates."""
+
+    points: _np.ndarray
+    """(k, 3) float64: positions on the input surface."""
+    faces: _np.ndarray
+    """(k,) int64: the input face each point lies in (``-1``: off the cap)."""
+    barycentric: _np.ndarray
+    """(k, 3) float64: weights of the face's three corners, in the order of ``faces[face]``
+    of the input (non-negative, sum 1)."""
+
+
 class CapMap:
     """A parameterization: ``cap`` (n, 3) points on the unit sphere with ``Z >= z_star``
     (``(x, y, 0)`` for the planar disk), ``plane`` (n, 2) points on the disk of radius
     ``r_star``, one per input vertex; ``report`` the library's report as a dict (the CLI's
-    ``param --report`` JSON)."""
+    ``param --report`` JSON). A map made by :func:`parameterize` also keeps its mesh for
+    :meth:`inverse`."""
 
     def __init__(self, cap: _np.ndarray, plane: _np.ndarray, report: Dict[str, Any]):
         self.cap = cap
         self.plane = plane
         self.report = report
+        self._native = None
+
+    def inverse(self, points, tolerance: float = 1e-9) -> InversePoints:
+        """Where on the input surface the cap points ``points`` lie: the inverse map
+        ``f^-1`` (paper Sec. 4.2, the library's ``CapMap::inverse``).
+
+        ``points`` is a ``(k, 3)`` array (or one point of shape ``(3,)``, answered as
+        ``k = 1``) of points on the cap: on the unit sphere with ``Z >= z_star``, a closed
+        surface's flat bottom disk ``Z = z_star`` included; ``(x, y, 0)`` in the disk for
+        ``domain="disk"``. Returns :class:`InversePoints` ``(points, faces, barycentric)``;
+        a point farther than ``tolerance`` off the cap, or not finite, gets face ``-1`` and
+        NaN, it is never guessed. Each call builds the point location over the input's faces
+        once and locates the points in parallel with the GIL released: pass many points in
+        one call rather than one call per point."""
+        if self._native is None:
+            raise InputError("this CapMap was not made by capmesh.parameterize (it has no mesh to map back to); "
+                             "call capmesh.parameterize(vertices, faces) and use its result")
+        p = _np.asarray(points, dtype=_np.float64)
+        if p.ndim == 1 and p.shape == (3,):
+            p = p.reshape(1, 3)
+        if p.ndim != 2 or p.shape[1] != 3:
+            raise InputError(f"points must have shape (k, 3), not {p.shape}: one row (X, Y, Z) per cap point")
+        return InversePoints(*self._native.inverse(p, float(tolerance)))
 
     @property
     def z_star(self) -> Optional[float]:
@@ -87,8 +126,10 @@ def parameterize(vertices, faces, domain: str = "adaptive", progress: Optional[P
     returning ``False`` cancels (raises :class:`Cancelled`), raising cancels with that
     exception. Options: initial, lambda_, open_lambda, no_lambda_fallback, smoothing,
     area_refinement, puncture_end, search_sites (see ``capmesh param --help``)."""
-    cap, plane, report = _capmesh.parameterize(_vertices(vertices), _faces(faces), domain, progress, **options)
-    return CapMap(cap, plane, _json.loads(report))
+    native, report = _capmesh.parameterize(_vertices(vertices), _faces(faces), domain, progress, **options)
+    m = CapMap(native.cap(), native.plane(), _json.loads(report))
+    m._native = native
+    return m
 
 
 def remesh(vertices, faces, faces_target: int = 5000, lat_long: Optional[Tuple[int, int]] = None,

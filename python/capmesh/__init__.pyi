@@ -1,7 +1,9 @@
-from typing import Any, Callable, Dict, Optional, Tuple, Union
+from typing import Any, Callable, Dict, NamedTuple, Optional, Tuple, Union
 import os
 import numpy as np
 import numpy.typing as npt
+
+from . import cohort as cohort
 
 ProgressCallback = Callable[[str, float, str], Optional[bool]]
 Vertices = npt.ArrayLike
@@ -17,6 +19,11 @@ class ComputeError(CapmeshError): ...
 class InternalError(CapmeshError): ...
 class Cancelled(CapmeshError): ...
 
+class InversePoints(NamedTuple):
+    points: npt.NDArray[np.float64]
+    faces: npt.NDArray[np.int64]
+    barycentric: npt.NDArray[np.float64]
+
 class CapMap:
     cap: npt.NDArray[np.float64]
     plane: npt.NDArray[np.float64]
@@ -26,6 +33,7 @@ class CapMap:
     def z_star(self) -> Optional[float]: ...
     @property
     def r_star(self) -> Optional[float]: ...
+    def inverse(self, points: npt.ArrayLike, tolerance: float = 1e-9) -> InversePoints: ...
 
 def parameterize(
     vertices: Vertices,

@@ -11,6 +11,7 @@ use pyo3::types::PyDict;
 
 use crate::arrays;
 use crate::errors::{self, input};
+use crate::inverse::NativeMap;
 use crate::options;
 use crate::progress::PyProgress;
 
@@ -48,7 +49,7 @@ pub fn write_mesh(py: Python<'_>, path: PathBuf, vertices: &Bound<'_, PyAny>, fa
 }
 
 /// parameterize(vertices, faces, domain="adaptive", progress=None, **options)
-///   -> (cap, plane, report_json)
+///   -> (NativeMap, report_json): the map kept with its mesh for `CapMap.inverse`.
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, domain="adaptive", progress=None, **options))]
 pub fn parameterize<'py>(
@@ -58,11 +59,12 @@ pub fn parameterize<'py>(
     domain: &str,
     progress: Option<Py<PyAny>>,
     options: Option<&Bound<'py, PyDict>>,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, String)> {
+) -> PyResult<(NativeMap, String)> {
     let mesh = arrays::mesh(vertices, faces)?;
     let options = options::param(domain, options)?;
     let map = run(py, progress, |sink| capmesh::parameterize(&mesh, &options, sink))?;
-    Ok((arrays::f64_rows(py, &map.cap), arrays::f64_rows(py, &map.plane), json(&map.report)?))
+    let report = json(&map.report)?;
+    Ok((NativeMap::new(mesh, map), report))
 }
 
 /// remesh(vertices, faces, faces_target=5000, lat_long=None, progress=None, **options)
