@@ -56,8 +56,8 @@ pub use cap::{CapMap, Domain, InverseMap, InverseMapError, InverseOptions, Surfa
 pub use error::{Error, Result};
 pub use harmonics::{analyze, HarmonicsOptions, HarmonicsOutput, HarmonicsReport};
 pub use io::{
-    read_mesh, read_vertex_attributes, write_mesh, AttributeData, ReadError, VertexAttribute,
-    WriteError,
+    read_mesh, read_ply_with_vertex_attributes, read_vertex_attributes, write_mesh, AttributeData,
+    ReadError, VertexAttribute, WriteError,
 };
 pub use mesh::TriMesh;
 pub use param::{parameterize, MapQuality, ParamOptions, ParamReport};

@@ -43,6 +43,24 @@
 #define CAPMESH_V1_BOUNDARY_MIXED 2
 
 /**
+ * `out_located[i]` of `capmesh_v1_map_inverse`: point `i` lies on the cap and its surface
+ * point was written.
+ */
+#define CAPMESH_V1_POINT_LOCATED 0
+
+/**
+ * `out_located[i]` of `capmesh_v1_map_inverse`: point `i` is off the cap (off the unit
+ * sphere or below `Z*` by more than 1e-9, outside the planar disk domain, or not finite); its
+ * outputs are NaN and face `CAPMESH_V1_NO_FACE`.
+ */
+#define CAPMESH_V1_POINT_OFF_CAP 1
+
+/**
+ * The face written for a point off the cap.
+ */
+#define CAPMESH_V1_NO_FACE UINT32_MAX
+
+/**
  * `capmesh_v1_param_options.domain`: the adaptive cap of the paper (default).
  */
 #define CAPMESH_V1_DOMAIN_ADAPTIVE 0
@@ -192,6 +210,12 @@ typedef enum capmesh_v1_status capmesh_v1_status;
 typedef int32_t capmesh_v1_status;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
+
+/**
+ * A surface mapped onto its cap, with the inverse map's point location. Opaque; made by
+ * `capmesh_v1_parameterize_map`, released with `capmesh_v1_map_free`.
+ */
+typedef struct capmesh_v1_map capmesh_v1_map;
 
 /**
  * A mesh produced by capmesh. Opaque; read it with the `capmesh_v1_mesh_*` accessors and
@@ -381,6 +405,17 @@ capmesh_v1_status capmesh_v1_parameterize(const struct capmesh_v1_mesh_view *mes
 capmesh_v1_status capmesh_v1_remesh(const struct capmesh_v1_mesh_view *mesh, const struct capmesh_v1_remesh_options *options, capmesh_v1_progress_fn progress, void *user_data, struct capmesh_v1_mesh **out_mesh, char **out_report_json);
 
 /**
+ * `capmesh_v1_remesh`, also recording where each new vertex lies on the input: the mesh's
+ * `capmesh_v1_mesh_source_faces` and `capmesh_v1_mesh_source_barycentrics` give each vertex's
+ * input triangle and the weights of its corners (through the inverse map), with which per-vertex
+ * data of the input (colour, quality, thickness...) can be interpolated onto the remesh.
+ *
+ * # Safety
+ * As `capmesh_v1_parameterize`.
+ */
+capmesh_v1_status capmesh_v1_remesh_located(const struct capmesh_v1_mesh_view *mesh, const struct capmesh_v1_remesh_options *options, capmesh_v1_progress_fn progress, void *user_data, struct capmesh_v1_mesh **out_mesh, char **out_report_json);
+
+/**
  * Remeshing quality of `remeshed` against `original` (any two triangle meshes): the JSON
  * object has `faces`, `vertices`, `d_face`, `d_face_relative`, `d_surface_vertex(_relative)`,
  * `d_surface_sampled(_relative)`, `min_angle_deg`, `zero_area_faces`, `mean_min_angle_deg`,
@@ -427,6 +462,25 @@ const double *capmesh_v1_mesh_positions(const struct capmesh_v1_mesh *mesh);
 const uint32_t *capmesh_v1_mesh_triangles(const struct capmesh_v1_mesh *mesh);
 
 /**
+ * For a mesh from `capmesh_v1_remesh_located`: `vertex_count` input triangle indices, the
+ * input face each vertex lies on (NULL for other meshes and for NULL).
+ *
+ * # Safety
+ * As for `capmesh_v1_mesh_vertex_count`; the pointer is valid until the mesh is released.
+ */
+const uint32_t *capmesh_v1_mesh_source_faces(const struct capmesh_v1_mesh *mesh);
+
+/**
+ * For a mesh from `capmesh_v1_remesh_located`: `3 * vertex_count` barycentric weights, per
+ * vertex those of the corners of its input face (`capmesh_v1_mesh_source_faces`), in the
+ * input triangle's order (non-negative, sum 1). NULL for other meshes and for NULL.
+ *
+ * # Safety
+ * As for `capmesh_v1_mesh_vertex_count`; the pointer is valid until the mesh is released.
+ */
+const double *capmesh_v1_mesh_source_barycentrics(const struct capmesh_v1_mesh *mesh);
+
+/**
  * Release a mesh returned by capmesh. NULL is accepted and ignored.
  *
  * # Safety
@@ -460,6 +514,93 @@ struct capmesh_v1_harmonics_options capmesh_v1_harmonics_options_default(void);
  * As `capmesh_v1_parameterize`.
  */
 capmesh_v1_status capmesh_v1_harmonics(const struct capmesh_v1_mesh_view *mesh, const struct capmesh_v1_harmonics_options *options, capmesh_v1_progress_fn progress, void *user_data, struct capmesh_v1_mesh **out_reconstructed, char **out_report_json);
+
+/**
+ * Parameterize `mesh` as `capmesh_v1_parameterize` does and keep the map as a handle. On
+ * success `*out_map` is the map, freed with `capmesh_v1_map_free`, and `*out_report_json`
+ * (unless NULL) the parameterization's JSON report. On failure both are NULL.
+ *
+ * # Safety
+ * As `capmesh_v1_parameterize`.
+ */
+capmesh_v1_status capmesh_v1_parameterize_map(const struct capmesh_v1_mesh_view *mesh, const struct capmesh_v1_param_options *options, capmesh_v1_progress_fn progress, void *user_data, struct capmesh_v1_map **out_map, char **out_report_json);
+
+/**
+ * Number of vertices of the mapped mesh (0 for NULL): the length of the cap positions and
+ * texture coordinates.
+ *
+ * # Safety
+ * `map` is NULL or a handle returned by `capmesh_v1_parameterize_map` and not yet released
+ * (the same holds for every function below).
+ */
+size_t capmesh_v1_map_vertex_count(const struct capmesh_v1_map *map);
+
+/**
+ * Number of triangles of the mapped mesh (0 for NULL): faces of `capmesh_v1_map_inverse`'s
+ * and `capmesh_v1_map_forward`'s results index them, in the input's order.
+ *
+ * # Safety
+ * As for `capmesh_v1_map_vertex_count`.
+ */
+size_t capmesh_v1_map_face_count(const struct capmesh_v1_map *map);
+
+/**
+ * `3 * vertex_count` coordinates of the input vertices on the cap (on the unit sphere,
+ * `Z >= Z*`; `(x, y, 0)` for the planar disk domain), owned by `map` (NULL for NULL).
+ *
+ * # Safety
+ * As for `capmesh_v1_map_vertex_count`; the pointer is valid until the map is released.
+ */
+const double *capmesh_v1_map_cap_positions(const struct capmesh_v1_map *map);
+
+/**
+ * `2 * vertex_count` texture coordinates (u, v per input vertex): the map's planar disk
+ * scaled into `[0, 1]^2`, as written by the CLI's `param --uv`. Owned by `map` (NULL for
+ * NULL).
+ *
+ * # Safety
+ * As for `capmesh_v1_map_vertex_count`; the pointer is valid until the map is released.
+ */
+const double *capmesh_v1_map_uv(const struct capmesh_v1_map *map);
+
+/**
+ * The inverse map of `count` cap points `cap_points` (`3 * count` doubles, x, y, z each):
+ * for each point, `out_located[i]` is `CAPMESH_V1_POINT_LOCATED` or `CAPMESH_V1_POINT_OFF_CAP`
+ * (never guessed: such a point gets NaN and `CAPMESH_V1_NO_FACE`). For a located point,
+ * `out_positions` gets its surface position (3 doubles), `out_faces` the input triangle
+ * holding it and `out_barycentrics` the weights of that triangle's three corners (in its
+ * order; non-negative, sum 1). `out_located` is required (`count` int32s); the other outputs
+ * may be NULL when not wanted (`3 * count`, `count` and `3 * count` elements). A closed
+ * surface's cap has a flat bottom disk `Z = Z*`, whose points are located too. `*out_count`,
+ * unless `out_count` is NULL, gets the number of located points. `count` 0 does nothing.
+ *
+ * # Safety
+ * `map` as for `capmesh_v1_map_vertex_count`; every non-NULL array must hold the counted
+ * elements and the outputs must not overlap the input.
+ */
+capmesh_v1_status capmesh_v1_map_inverse(const struct capmesh_v1_map *map, const double *cap_points, size_t count, double *out_positions, uint32_t *out_faces, double *out_barycentrics, int32_t *out_located, size_t *out_count);
+
+/**
+ * The forward map of `count` surface points, each an input triangle `faces[i]` and the
+ * weights `barycentrics[3i..3i+3]` of its corners (finite, >= 0, summing to 1): their cap
+ * points in `out_cap_points` (`3 * count` doubles; on the flat bottom `Z = Z*` for a closed
+ * surface's punctured quad). A face out of range or weights that are not a point of the
+ * triangle fail the call with `CAPMESH_V1_INVALID_ARGUMENT` naming the point; nothing is
+ * written then. `count` 0 does nothing.
+ *
+ * # Safety
+ * `map` as for `capmesh_v1_map_vertex_count`; every non-NULL array must hold the counted
+ * elements and the output must not overlap the inputs.
+ */
+capmesh_v1_status capmesh_v1_map_forward(const struct capmesh_v1_map *map, const uint32_t *faces, const double *barycentrics, size_t count, double *out_cap_points);
+
+/**
+ * Release a map. NULL is accepted and ignored.
+ *
+ * # Safety
+ * `map` is NULL or a handle returned by `capmesh_v1_parameterize_map`, released at most once.
+ */
+void capmesh_v1_map_free(struct capmesh_v1_map *map);
 
 /**
  * The defaults documented on each field.

@@ -4,6 +4,8 @@
 //   capmesh::Error       thrown on every non-OK status: status() and the library's message
 //   capmesh::Progress    std::function<bool(Stage, double, const char*)>; return false to cancel
 //   capmesh::parameterize / remesh / harmonics / metrics   the four entry points
+//   capmesh::remesh_located   remesh, each new vertex with its input face and barycentrics
+//   capmesh::CapMap           the map as an object (inverse and forward map): capmesh_map.hpp
 //
 // Inputs are capmesh_v1_mesh_view (pointers into the caller's arrays); capmesh::Arrays owns
 // flat arrays and hands out such a view. capmesh_openmesh.hpp converts OpenMesh meshes.
@@ -120,6 +122,12 @@ class Mesh {
   const double *positions() const noexcept { return capmesh_v1_mesh_positions(handle_); }
   /// 3 * face_count() vertex indices, valid while this Mesh lives.
   const uint32_t *triangles() const noexcept { return capmesh_v1_mesh_triangles(handle_); }
+  /// For a mesh from remesh_located(): vertex_count() input face indices, one per vertex;
+  /// nullptr otherwise. Valid while this Mesh lives.
+  const uint32_t *source_faces() const noexcept { return capmesh_v1_mesh_source_faces(handle_); }
+  /// For a mesh from remesh_located(): 3 * vertex_count() weights of the corners of each
+  /// vertex's input face (in that face's order); nullptr otherwise.
+  const double *source_barycentrics() const noexcept { return capmesh_v1_mesh_source_barycentrics(handle_); }
   /// A view of this mesh, to pass it back into capmesh (e.g. to metrics()).
   capmesh_v1_mesh_view view() const noexcept { return {positions(), vertex_count(), triangles(), face_count()}; }
   capmesh_v1_mesh *get() const noexcept { return handle_; }
@@ -260,6 +268,19 @@ inline Result remesh(const capmesh_v1_mesh_view &mesh, const RemeshOptions &opti
   capmesh_v1_mesh *out = nullptr;
   char *report = nullptr;
   capmesh_v1_status s = capmesh_v1_remesh(&mesh, &options, bridge.fn(), &bridge, &out, &report);
+  Result r{Mesh(out), detail::take_string(report)};
+  bridge.finish(s);
+  return r;
+}
+
+/// remesh(), also recording each new vertex's point of the input (Mesh::source_faces() and
+/// Mesh::source_barycentrics()), to carry per-vertex data (colour, quality, ...) across.
+inline Result remesh_located(const capmesh_v1_mesh_view &mesh, const RemeshOptions &options = {},
+                             const Progress &progress = {}) {
+  detail::ProgressBridge bridge{&progress, nullptr};
+  capmesh_v1_mesh *out = nullptr;
+  char *report = nullptr;
+  capmesh_v1_status s = capmesh_v1_remesh_located(&mesh, &options, bridge.fn(), &bridge, &out, &report);
   Result r{Mesh(out), detail::take_string(report)};
   bridge.finish(s);
   return r;

@@ -4,6 +4,8 @@
 //   capmesh::openmesh::to_arrays(mesh)            -> capmesh::Arrays (view() for the C ABI)
 //   capmesh::openmesh::to_mesh<MyMesh>(result)    -> MyMesh
 //   capmesh::openmesh::remesh / parameterize / harmonics   OpenMesh in, OpenMesh out
+//   capmesh::openmesh::parameterize_map(mesh)     -> capmesh::CapMap (inverse / forward map)
+//   capmesh::openmesh::face_handles(mesh)         -> the OpenMesh face of each capmesh face index
 //
 // Vertices deleted (status flag) are skipped and the rest renumbered in iteration order;
 // faces must be triangles. Include OpenMesh before this header.
@@ -18,7 +20,7 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
-#include "capmesh.hpp"
+#include "capmesh_map.hpp"
 
 namespace capmesh {
 namespace openmesh {
@@ -104,6 +106,25 @@ MeshResult<OMesh> harmonics(const OMesh &mesh, const HarmonicsOptions &options =
   Arrays in = to_arrays(mesh);
   Result r = capmesh::harmonics(in.view(), options, progress);
   return {to_mesh<OMesh>(r.mesh), std::move(r.report_json)};
+}
+
+/// capmesh::parameterize_map of an OpenMesh mesh: the map, whose inverse gives faces in
+/// the numbering of to_arrays (face_handles() turns them into OpenMesh handles) and whose
+/// cap positions follow the non-deleted vertices in iteration order.
+template <class OMesh>
+CapMap parameterize_map(const OMesh &mesh, const ParamOptions &options = {}, const Progress &progress = {}) {
+  Arrays in = to_arrays(mesh);
+  return capmesh::parameterize_map(in.view(), options, progress);
+}
+
+/// The OpenMesh face handle of each face index capmesh uses for `mesh` (its non-deleted faces
+/// in iteration order, as to_arrays numbers them).
+template <class OMesh>
+std::vector<typename OMesh::FaceHandle> face_handles(const OMesh &mesh) {
+  std::vector<typename OMesh::FaceHandle> out;
+  out.reserve(mesh.n_faces());
+  for (auto fh : mesh.faces()) out.push_back(fh);
+  return out;
 }
 
 }  // namespace openmesh

@@ -1,4 +1,5 @@
-/* The C ABI from plain C99: read an OBJ, remesh it, cancel, and misuse the API.
+/* The C ABI from plain C99: read an OBJ, remesh it, cancel, and misuse the API; the cap map
+ * handle gives the input vertices back from their cap points (open and closed surfaces).
  * Usage: capmesh_c_test MESH_DIR */
 #include <math.h>
 #include <stdio.h>
@@ -75,6 +76,83 @@ static int32_t cancel_on_third(void *user, int32_t stage, double fraction, const
   return ++calls >= 3;
 }
 
+/* Parameterize `m` into a map handle, invert its cap vertices and check that the input
+ * vertices come back (within 1e-9 of the bounding-box diagonal), that a point off the cap is
+ * reported, and that the forward map sends the surface points back to the cap vertices. */
+static void map_round_trip(const obj_mesh *m, const char *name) {
+  capmesh_v1_mesh_view view;
+  capmesh_v1_map *map = NULL;
+  const double *cap;
+  double *pos, *bary, *fwd, lo[3], hi[3], diag = 0.0, worst = 0.0, worst_fwd = 0.0;
+  double off[6] = {0.0, 0.0, 1.0, 0.0, 0.0, 3.0};
+  uint32_t *faces;
+  int32_t *located, off_status[2] = {-1, -1};
+  size_t i, k, nv, count = 0;
+  capmesh_v1_status s;
+
+  view.positions = m->positions;
+  view.vertex_count = m->nv;
+  view.triangles = m->triangles;
+  view.face_count = m->nf;
+  s = capmesh_v1_parameterize_map(&view, NULL, NULL, NULL, &map, NULL);
+  CHECK(s == CAPMESH_V1_OK);
+  if (s != CAPMESH_V1_OK) {
+    fprintf(stderr, "%s: %s\n", name, capmesh_v1_last_error());
+    return;
+  }
+  nv = capmesh_v1_map_vertex_count(map);
+  CHECK(nv == m->nv);
+  CHECK(capmesh_v1_map_face_count(map) == m->nf);
+  cap = capmesh_v1_map_cap_positions(map);
+  CHECK(cap != NULL && capmesh_v1_map_uv(map) != NULL);
+  pos = malloc(3 * nv * sizeof(double));
+  bary = malloc(3 * nv * sizeof(double));
+  fwd = malloc(3 * nv * sizeof(double));
+  faces = malloc(nv * sizeof(uint32_t));
+  located = malloc(nv * sizeof(int32_t));
+  s = capmesh_v1_map_inverse(map, cap, nv, pos, faces, bary, located, &count);
+  CHECK(s == CAPMESH_V1_OK);
+  CHECK(count == nv);
+  for (k = 0; k < 3; k++) lo[k] = hi[k] = m->positions[k];
+  for (i = 0; i < nv; i++)
+    for (k = 0; k < 3; k++) {
+      double x = m->positions[3 * i + k];
+      lo[k] = x < lo[k] ? x : lo[k];
+      hi[k] = x > hi[k] ? x : hi[k];
+    }
+  for (k = 0; k < 3; k++) diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+  diag = sqrt(diag);
+  for (i = 0; i < nv; i++) {
+    double d = 0.0;
+    CHECK(located[i] == CAPMESH_V1_POINT_LOCATED);
+    CHECK(faces[i] < m->nf);
+    for (k = 0; k < 3; k++) d += (pos[3 * i + k] - m->positions[3 * i + k]) * (pos[3 * i + k] - m->positions[3 * i + k]);
+    worst = sqrt(d) > worst ? sqrt(d) : worst;
+  }
+  printf("%s: %zu cap vertices inverted, worst distance to the input vertex %.3g (diagonal %.3g)\n", name, nv, worst, diag);
+  CHECK(worst <= 1e-9 * diag);
+  /* Forward map of the located surface points: the cap vertices again. */
+  s = capmesh_v1_map_forward(map, faces, bary, nv, fwd);
+  CHECK(s == CAPMESH_V1_OK);
+  for (i = 0; i < 3 * nv; i++) worst_fwd = fabs(fwd[i] - cap[i]) > worst_fwd ? fabs(fwd[i] - cap[i]) : worst_fwd;
+  CHECK(worst_fwd < 1e-6);
+  /* The north pole is on the cap, (0, 0, 3) is not: reported, not guessed. */
+  s = capmesh_v1_map_inverse(map, off, 2, NULL, NULL, NULL, off_status, &count);
+  CHECK(s == CAPMESH_V1_OK && count == 1);
+  CHECK(off_status[0] == CAPMESH_V1_POINT_LOCATED && off_status[1] == CAPMESH_V1_POINT_OFF_CAP);
+  /* Misuse: no status array; NULL map. */
+  s = capmesh_v1_map_inverse(map, off, 2, NULL, NULL, NULL, NULL, NULL);
+  CHECK(s == CAPMESH_V1_INVALID_ARGUMENT && strstr(capmesh_v1_last_error(), "out_located") != NULL);
+  s = capmesh_v1_map_inverse(NULL, off, 2, NULL, NULL, NULL, off_status, NULL);
+  CHECK(s == CAPMESH_V1_INVALID_ARGUMENT && strstr(capmesh_v1_last_error(), "map is NULL") != NULL);
+  free(pos);
+  free(bary);
+  free(fwd);
+  free(faces);
+  free(located);
+  capmesh_v1_map_free(map);
+}
+
 int main(int argc, char **argv) {
   char path[1024];
   obj_mesh m;
@@ -135,6 +213,13 @@ int main(int argc, char **argv) {
   CHECK(s == CAPMESH_V1_INVALID_MESH && strlen(capmesh_v1_last_error()) > 0);
   CHECK(out == NULL);
 
+  /* The map handle: the cap vertices give the input vertices back. */
+  map_round_trip(&m, "open_meg_helmet_babysquid_mne");
+  free(m.positions);
+  free(m.triangles);
+  snprintf(path, sizeof path, "%s/closed_bunny_npm.obj", argv[1]);
+  CHECK(read_obj(path, &m));
+  map_round_trip(&m, "closed_bunny_npm");
   free(m.positions);
   free(m.triangles);
   printf("%s\n", failures ? "FAILED" : "all C checks passed");

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "capmesh_openmesh.hpp"
+#include <array>
 
 namespace {
 
@@ -328,6 +329,73 @@ void openmesh_adapter() {
   }
 }
 
+void cap_map() {
+  // The wrapper: the cap vertices give the input vertices back, off-cap points are flagged,
+  // the forward map returns to the cap; on an open and a closed surface.
+  for (const char *name : {helmet, bunny}) {
+    DMesh input = read<DMesh>(name);
+    capmesh::Arrays arrays = capmesh::openmesh::to_arrays(input);
+    capmesh::CapMap map = capmesh::parameterize_map(arrays.view());
+    CHECK(map && map.vertex_count() == input.n_vertices() && map.face_count() == input.n_faces());
+    CHECK(json_number(map.report_json(), "z_star") < 1.0);
+    const auto points = map.inverse(map.cap_positions(), map.vertex_count());
+    double worst = 0.0, worst_forward = 0.0;
+    for (std::size_t v = 0; v < points.size(); ++v) {
+      CHECK(points[v].located && points[v].face < input.n_faces());
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::fabs(points[v].position[k] - arrays.positions[3 * v + k]));
+      const auto x = map.forward(points[v].face, points[v].barycentric);
+      for (int k = 0; k < 3; ++k) worst_forward = std::max(worst_forward, std::fabs(x[k] - map.cap_positions()[3 * v + k]));
+    }
+    std::printf("%s: cap vertices back to the input within %.2e, forward within %.2e\n", name, worst, worst_forward);
+    CHECK(worst < 1e-9);
+    CHECK(worst_forward < 1e-6);
+    const capmesh::SurfacePoint off = map.inverse(std::array<double, 3>{0.0, 0.0, 2.0});
+    CHECK(!off.located && off.face == CAPMESH_V1_NO_FACE && std::isnan(off.position[0]));
+    try {
+      map.forward(static_cast<uint32_t>(input.n_faces()), {1.0, 0.0, 0.0});
+      CHECK(false);
+    } catch (const capmesh::Error &e) {
+      CHECK(e.status() == capmesh::Status::InvalidArgument);
+      CHECK(e.message().find("face") != std::string::npos);
+    }
+    // Moved, the map still works; the moved-from one is empty.
+    capmesh::CapMap moved = std::move(map);
+    CHECK(!map && moved.inverse(std::array<double, 3>{0.0, 0.0, 1.0}).located);
+  }
+}
+
+void cap_map_openmesh() {
+  // The OpenMesh adapter: the map of a float mesh, faces as OpenMesh handles, and
+  // remesh_located's sources reproduce the remesh's positions on the input's faces.
+  FMesh input = read<FMesh>(helmet);
+  capmesh::CapMap map = capmesh::openmesh::parameterize_map(input);
+  const auto handles = capmesh::openmesh::face_handles(input);
+  CHECK(handles.size() == map.face_count());
+  const auto point = map.inverse(std::array<double, 3>{0.0, 0.0, 1.0});
+  CHECK(point.located);
+  OpenMesh::Vec3d p(0, 0, 0);
+  int corner = 0;
+  for (auto v : input.fv_range(handles.at(point.face))) p += OpenMesh::vector_cast<OpenMesh::Vec3d>(input.point(v)) * point.barycentric[corner++];
+  double d = 0.0;
+  for (int k = 0; k < 3; ++k) d = std::max(d, std::fabs(p[k] - point.position[k]));
+  CHECK(d < 1e-5);
+  capmesh::Arrays arrays = capmesh::openmesh::to_arrays(input);
+  auto located = capmesh::remesh_located(arrays.view(), capmesh::RemeshOptions::uniform(1500));
+  const uint32_t *faces = located.mesh.source_faces();
+  const double *weights = located.mesh.source_barycentrics();
+  CHECK(faces != nullptr && weights != nullptr);
+  double worst = 0.0;
+  for (std::size_t v = 0; faces != nullptr && v < located.mesh.vertex_count(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      double x = 0.0;
+      for (int c = 0; c < 3; ++c) x += weights[3 * v + c] * arrays.positions[3 * arrays.triangles[3 * faces[v] + c] + k];
+      worst = std::max(worst, std::fabs(x - located.mesh.positions()[3 * v + k]));
+    }
+  std::printf("remesh_located: %zu vertices on their input faces within %.2e\n", located.mesh.vertex_count(), worst);
+  CHECK(worst < 1e-6);
+  CHECK(capmesh::remesh(arrays.view(), capmesh::RemeshOptions::uniform(500)).mesh.source_faces() == nullptr);
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -349,6 +417,8 @@ int main(int argc, char **argv) {
       {"misuse_raw", misuse_raw},
       {"misuse_wrapper", misuse_wrapper},
       {"openmesh_adapter", openmesh_adapter},
+      {"cap_map", cap_map},
+      {"cap_map_openmesh", cap_map_openmesh},
   };
   auto it = cases.find(argv[1]);
   if (it == cases.end()) {

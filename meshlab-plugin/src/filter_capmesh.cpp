@@ -5,6 +5,7 @@
 #include "parameters.h"
 #include "progress_callback.h"
 #include "report_values.h"
+#include "vertex_data.h"
 
 #include <cmath>
 #include <memory>
@@ -15,7 +16,9 @@ namespace {
 
 struct MeshFree { void operator()(capmesh_v1_mesh* m) const { capmesh_v1_mesh_free(m); } };
 struct StringFree { void operator()(char* s) const { capmesh_v1_string_free(s); } };
+struct MapFree { void operator()(capmesh_v1_map* m) const { capmesh_v1_map_free(m); } };
 using MeshPtr = std::unique_ptr<capmesh_v1_mesh, MeshFree>;
+using MapPtr = std::unique_ptr<capmesh_v1_map, MapFree>;
 using StringPtr = std::unique_ptr<char, StringFree>;
 
 const char* statusName(capmesh_v1_status s)
@@ -55,12 +58,13 @@ MeshModel& inputMesh(MeshDocument& md)
 	return *m;
 }
 
-/// A new layer holding `result`, made current (MeshLab's habit for filters that create meshes).
-MeshModel& addLayer(MeshDocument& md, const capmesh_v1_mesh* result, const QString& label)
+/// A new layer holding `nv` vertices and `nf` triangles, made current (MeshLab's habit for
+/// filters that create meshes).
+MeshModel& addLayer(MeshDocument& md, const double* positions, size_t nv, const uint32_t* triangles, size_t nf, const QString& label)
 {
 	MeshModel* out = md.addNewMesh("", label, true);
 	try {
-		fillMesh(result, out->cm);
+		fillMesh(positions, nv, triangles, nf, out->cm);
 	}
 	catch (...) {
 		md.delMesh(out->id()); // no half-made layer
@@ -68,6 +72,13 @@ MeshModel& addLayer(MeshDocument& md, const capmesh_v1_mesh* result, const QStri
 	}
 	out->updateBoxAndNormals();
 	return *out;
+}
+
+/// A new layer holding `result`, made current.
+MeshModel& addLayer(MeshDocument& md, const capmesh_v1_mesh* result, const QString& label)
+{
+	return addLayer(md, capmesh_v1_mesh_positions(result), capmesh_v1_mesh_vertex_count(result),
+	                capmesh_v1_mesh_triangles(result), capmesh_v1_mesh_face_count(result), label);
 }
 
 /// The report as output values plus the counts of the produced mesh; the report is logged.
@@ -151,7 +162,9 @@ QString FilterCapmeshPlugin::filterInfo(ActionIDType f) const
 		return "Remeshes a genus-0 surface through its cap parameterization: a uniform or "
 		       "latitude-longitude grid on the cap is pulled back onto the surface, then optimised "
 		       "(by default shape+area: well-shaped triangles of near-equal area, every vertex "
-		       "on the input surface). The result is a new layer. capmesh " + version;
+		       "on the input surface). The result is a new layer; the input's vertex colour and "
+		       "quality are carried onto it, interpolated where each new vertex lies on the input "
+		       "(capmesh's inverse map). capmesh " + version;
 	case FP_HARMONICS:
 		return "Fits a harmonic basis of the cap (the paper's adaptive harmonics, or spherical cap "
 		       "harmonics that keep an open surface's boundary loop) to the surface coordinates up "
@@ -193,6 +206,11 @@ RichParameterList FilterCapmeshPlugin::initParameterList(const QAction* a, const
 			"PlaneTexCoords", true, "Store disk coordinates as texture coordinates",
 			"Per-vertex texture coordinates: the stereographic projection of the cap, i.e. "
 			"capmesh's planar disk, scaled into the unit square."));
+		list.addParam(RichBool(
+			"InputTexCoords", false, "Set the map as texture coordinates of the input",
+			"Per-vertex texture coordinates on the current (input) mesh: each vertex's point of the "
+			"map's disk scaled into the unit square, as capmesh's `param --uv` writes them, so a "
+			"checkerboard texture shows the map on the surface."));
 		break;
 	case FP_REMESH: addRemeshOptions(list, capmesh_v1_remesh_options_default()); break;
 	case FP_HARMONICS: addHarmonicsOptions(list, capmesh_v1_harmonics_options_default()); break;
@@ -208,7 +226,8 @@ std::map<std::string, QVariant> FilterCapmeshPlugin::applyFilter(
 	switch (ID(action)) {
 	case FP_PARAMETERIZE: {
 		auto values = parameterize(par, md, cb);
-		postConditionMask = par.getBool("NewLayer") ? MeshModel::MM_NONE
+		postConditionMask = par.getBool("NewLayer")
+			? (par.getBool("InputTexCoords") ? int(MeshModel::MM_VERTTEXCOORD) : int(MeshModel::MM_NONE))
 			: (MeshModel::MM_VERTCOORD | MeshModel::MM_VERTNORMAL | MeshModel::MM_FACENORMAL
 			   | MeshModel::MM_VERTTEXCOORD);
 		return values;
@@ -229,23 +248,27 @@ std::map<std::string, QVariant> FilterCapmeshPlugin::parameterize(
 	const MeshBuffers buffers(in.cm);
 	const capmesh_v1_mesh_view view = buffers.view();
 	ProgressTarget progress{cb, "Capmesh parameterization"};
-	capmesh_v1_mesh* cap = nullptr;
+	capmesh_v1_map* map = nullptr;
 	char* json = nullptr;
-	const capmesh_v1_status status = capmesh_v1_parameterize(&view, &options, forwardProgress, &progress, &cap, &json);
-	MeshPtr capOwner(cap);
+	const capmesh_v1_status status = capmesh_v1_parameterize_map(&view, &options, forwardProgress, &progress, &map, &json);
+	MapPtr mapOwner(map);
 	StringPtr jsonOwner(json);
 	check(status, "parameterization");
+	const size_t capVertices = capmesh_v1_map_vertex_count(map);
+	if (capVertices != buffers.vertexCount())
+		throw MLException(QString("Capmesh: the map has %1 vertices, the mesh %2 (a capmesh bug).")
+			.arg(capVertices).arg(buffers.vertexCount()));
+	// Texture coordinates on the input first: a new layer becomes the current mesh.
+	if (par.getBool("InputTexCoords"))
+		setTexCoordsFromMap(capmesh_v1_map_uv(map), buffers, in);
 
 	MeshModel* out = nullptr;
 	if (newLayer) {
-		out = &addLayer(md, cap, in.label() + " cap");
+		const std::vector<uint32_t>& t = buffers.triangleIndices();
+		out = &addLayer(md, capmesh_v1_map_cap_positions(map), capVertices, t.data(), t.size() / 3, in.label() + " cap");
 	}
 	else {
-		if (capmesh_v1_mesh_vertex_count(cap) != buffers.vertexCount())
-			throw MLException(QString("Capmesh: the cap has %1 vertices, the mesh %2 (capmesh welded "
-			                          "coincident vertices); use 'Cap as a new layer'.")
-				.arg(capmesh_v1_mesh_vertex_count(cap)).arg(buffers.vertexCount()));
-		const double* p = capmesh_v1_mesh_positions(cap);
+		const double* p = capmesh_v1_map_cap_positions(map);
 		const auto& source = buffers.sourceVertex();
 		for (size_t i = 0; i < source.size(); ++i)
 			in.cm.vert[source[i]].P() = Point3m(Scalarm(p[3 * i]), Scalarm(p[3 * i + 1]), Scalarm(p[3 * i + 2]));
@@ -267,14 +290,19 @@ std::map<std::string, QVariant> FilterCapmeshPlugin::remesh(
 	ProgressTarget progress{cb, "Capmesh remesh"};
 	capmesh_v1_mesh* mesh = nullptr;
 	char* json = nullptr;
-	const capmesh_v1_status status = capmesh_v1_remesh(&view, &options, forwardProgress, &progress, &mesh, &json);
+	// located: each new vertex's input triangle and weights, to carry colour and quality.
+	const capmesh_v1_status status = capmesh_v1_remesh_located(&view, &options, forwardProgress, &progress, &mesh, &json);
 	MeshPtr meshOwner(mesh);
 	StringPtr jsonOwner(json);
 	check(status, "remesh");
 	const QString grid = options.grid == 0 ? QString("uniform %1").arg(options.faces)
 	                                       : QString("lat-long %1x%2").arg(options.rings).arg(options.sectors);
 	MeshModel& out = addLayer(md, mesh, in.label() + " capmesh " + grid);
-	return outputs(*this, json, out);
+	const int carried = carryVertexData(in, buffers, mesh, out);
+	auto values = outputs(*this, json, out);
+	values["carried_vertex_color"] = QVariant((carried & MeshModel::MM_VERTCOLOR) != 0);
+	values["carried_vertex_quality"] = QVariant((carried & MeshModel::MM_VERTQUALITY) != 0);
+	return values;
 }
 
 std::map<std::string, QVariant> FilterCapmeshPlugin::harmonics(

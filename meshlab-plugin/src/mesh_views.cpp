@@ -55,10 +55,14 @@ capmesh_v1_mesh_view MeshBuffers::view() const
 
 void fillMesh(const capmesh_v1_mesh* result, CMeshO& out)
 {
-	const size_t nv = capmesh_v1_mesh_vertex_count(result);
-	const size_t nf = capmesh_v1_mesh_face_count(result);
-	const double* p = capmesh_v1_mesh_positions(result);
-	const uint32_t* t = capmesh_v1_mesh_triangles(result);
+	fillMesh(capmesh_v1_mesh_positions(result), capmesh_v1_mesh_vertex_count(result),
+	         capmesh_v1_mesh_triangles(result), capmesh_v1_mesh_face_count(result), out);
+}
+
+void fillMesh(const double* p, size_t nv, const uint32_t* t, size_t nf, CMeshO& out)
+{
+	if ((nv > 0 && p == nullptr) || (nf > 0 && t == nullptr))
+		throw MLException("Capmesh: the result has no arrays (a capmesh bug).");
 	for (size_t i = 0; i < 3 * nf; ++i)
 		if (t[i] >= nv)
 			throw MLException("Capmesh: the result indexes a vertex it does not have (a capmesh bug).");

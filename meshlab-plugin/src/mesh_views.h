@@ -25,6 +25,8 @@ public:
 	capmesh_v1_mesh_view view() const;
 	size_t vertexCount() const { return positions.size() / 3; }
 	size_t faceCount() const { return triangles.size() / 3; }
+	/// The compact triangles: three compact vertex indices each.
+	const std::vector<uint32_t>& triangleIndices() const { return triangles; }
 	/// Index in `mesh.vert` of each compact vertex (to write per-vertex data back).
 	const std::vector<size_t>& sourceVertex() const { return source; }
 
@@ -37,6 +39,10 @@ private:
 /// Replaces the content of `out` by the vertices and triangles of a capmesh result.
 /// Throws MLException when the result indexes a vertex it does not have.
 void fillMesh(const capmesh_v1_mesh* result, CMeshO& out);
+
+/// Replaces the content of `out` by `nv` vertices `positions` (xyz each) and `nf` triangles.
+/// Throws MLException when a triangle indexes a vertex that does not exist.
+void fillMesh(const double* positions, size_t nv, const uint32_t* triangles, size_t nf, CMeshO& out);
 
 } // namespace capmesh_meshlab
 

@@ -298,3 +298,77 @@ def test_cap_harmonics_keep_the_boundary_loop(plugin, mesh_file):
     ms.set_current_mesh(0)
     ms.apply_filter("capmesh_harmonics_reconstruction", order=6, basis=1, resamplefaces=2000)
     assert 1800 <= ms.current_mesh().face_number() <= 2200
+
+
+def linear(v):
+    """A linear function of position (values carried exactly by barycentric interpolation)."""
+    return 0.3 * v[:, 0] - 1.2 * v[:, 1] + 0.7 * v[:, 2] + 5.0
+
+
+def coloured(mesh_file, name):
+    """A MeshSet holding `name` with vertex quality = linear(position) and a vertex colour whose
+    red and green channels grow linearly with x and y."""
+    loaded = load(mesh_file, name)
+    source = loaded.current_mesh()
+    source.compact()  # MeshLab's OBJ reader marks duplicate vertices deleted
+    v, f = source.vertex_matrix(), source.face_matrix()
+    t = (v - v.min(axis=0)) / (v.max(axis=0) - v.min(axis=0))
+    colour = np.column_stack([0.1 + 0.8 * t[:, 0], 0.9 - 0.8 * t[:, 1], np.full(len(v), 0.5), np.ones(len(v))])
+    ms = pymeshlab.MeshSet()
+    ms.add_mesh(pymeshlab.Mesh(vertex_matrix=v, face_matrix=f, v_scalar_array=linear(v), v_color_matrix=colour))
+    return ms
+
+
+def test_remesh_keeps_vertex_colour_and_quality(plugin, mesh_file):
+    ms = coloured(mesh_file, OPEN_MESH)
+    source = ms.current_mesh()
+    assert source.has_vertex_color() and source.has_vertex_scalar()
+    report = ms.apply_filter("capmesh_remesh", faces=2000)
+    assert report["carried_vertex_color"] and report["carried_vertex_quality"]
+    out = ms.current_mesh()
+    assert out.has_vertex_color() and out.has_vertex_scalar()
+    v = out.vertex_matrix()
+    # Quality: a linear function of position stays that function of the remesh's positions
+    # (barycentric interpolation on the input's faces, up to MeshLab's float storage).
+    q = out.vertex_scalar_array()
+    scale = np.abs(linear(source.vertex_matrix())).max()
+    assert np.abs(q - linear(v)).max() < 1e-5 * scale
+    # Colour: within the input's range per channel, red following x as on the input.
+    c_in, c_out = source.vertex_color_matrix(), out.vertex_color_matrix()
+    assert (c_out.min(axis=0) >= c_in.min(axis=0) - 1 / 255).all()
+    assert (c_out.max(axis=0) <= c_in.max(axis=0) + 1 / 255).all()
+    t = (v[:, 0] - source.vertex_matrix()[:, 0].min()) / np.ptp(source.vertex_matrix()[:, 0])
+    assert np.abs(c_out[:, 0] - (0.1 + 0.8 * t)).max() < 3 / 255
+    # A mesh without colour or quality gets none.
+    ms = load(mesh_file, OPEN_MESH)
+    report = ms.apply_filter("capmesh_remesh", faces=1000)
+    assert not report["carried_vertex_color"] and not report["carried_vertex_quality"]
+
+
+def test_closed_surface_remesh_keeps_quality(plugin, mesh_file):
+    ms = coloured(mesh_file, CLOSED_MESH)
+    scale = np.abs(linear(ms.current_mesh().vertex_matrix())).max()
+    ms.apply_filter("capmesh_remesh", faces=2000)
+    out = ms.current_mesh()
+    assert np.abs(out.vertex_scalar_array() - linear(out.vertex_matrix())).max() < 1e-5 * scale
+
+
+def test_input_texture_coordinates_are_the_map(plugin, mesh_file):
+    ms = load(mesh_file, OPEN_MESH)
+    assert not ms.current_mesh().has_vertex_tex_coord()
+    report = ms.apply_filter("capmesh_parameterization", inputtexcoords=True, planetexcoords=True)
+    source, cap = ms.mesh(0), ms.mesh(1)
+    assert source.has_vertex_tex_coord()
+    uv = source.vertex_tex_coord_matrix()
+    assert uv.shape == (source.vertex_number(), 2)
+    assert (uv >= 0).all() and (uv <= 1).all()
+    # The map's disk scaled into the unit square: the cap layer's stereographic coordinates
+    # (the plugin's own disk coordinates) agree, and the boundary lies on the disk's rim.
+    assert np.abs(uv - cap.vertex_tex_coord_matrix()).max() < 1e-4
+    rim = np.abs(cap.vertex_matrix()[:, 2] - report["z_star"]) < 1e-6
+    assert rim.sum() > 10
+    assert np.abs(np.linalg.norm(uv[rim] - 0.5, axis=1) - 0.5).max() < 1e-4
+    # Off by default.
+    ms = load(mesh_file, OPEN_MESH)
+    ms.apply_filter("capmesh_parameterization")
+    assert not ms.mesh(0).has_vertex_tex_coord()

@@ -12,6 +12,8 @@
 //! `None`, never guessed; points on the cap between the rim circle and the polygon inscribed
 //! in it go to the nearest point of the surface's boundary.
 
+use std::borrow::Cow;
+
 use super::stereographic::{inverse_stereographic, stereographic};
 use super::CapMap;
 use crate::mesh::TriMesh;
@@ -89,9 +91,11 @@ struct Bottom<'a> {
 }
 
 /// The inverse of a [`CapMap`] with its point location built: see the module documentation.
+/// It borrows the map and the mesh ([`CapMap::inverse`]) or owns them
+/// ([`CapMap::into_inverse`], an `InverseMap<'static>` for handles such as the C ABI's).
 pub struct InverseMap<'a> {
-    mesh: &'a TriMesh,
-    map: &'a CapMap,
+    mesh: Cow<'a, TriMesh>,
+    map: Cow<'a, CapMap>,
     /// Over the faces not in the punctured quad, numbered as `top_faces`.
     top: Locator<'a>,
     top_faces: Vec<usize>,
@@ -112,11 +116,23 @@ impl CapMap {
 
     /// [`CapMap::inverse`] with options.
     pub fn inverse_with<'a>(&'a self, mesh: &'a TriMesh, options: InverseOptions) -> Result<InverseMap<'a>, InverseMapError> {
-        if self.plane.len() != mesh.n_vertices() || self.cap.len() != mesh.n_vertices() {
-            return Err(InverseMapError::VertexCount { map: self.plane.len(), mesh: mesh.n_vertices() });
+        InverseMap::build(Cow::Borrowed(mesh), Cow::Borrowed(self), options)
+    }
+
+    /// [`CapMap::inverse_with`] owning the map and the mesh: an inverse map that outlives
+    /// them (the point location keeps its own copy of the planar positions).
+    pub fn into_inverse(self, mesh: TriMesh, options: InverseOptions) -> Result<InverseMap<'static>, InverseMapError> {
+        InverseMap::build(Cow::Owned(mesh), Cow::Owned(self), options)
+    }
+}
+
+impl<'a> InverseMap<'a> {
+    fn build(mesh: Cow<'a, TriMesh>, map: Cow<'a, CapMap>, options: InverseOptions) -> Result<Self, InverseMapError> {
+        if map.plane.len() != mesh.n_vertices() || map.cap.len() != mesh.n_vertices() {
+            return Err(InverseMapError::VertexCount { map: map.plane.len(), mesh: mesh.n_vertices() });
         }
         let mut is_bottom = vec![false; mesh.n_faces()];
-        for &f in &self.bottom_faces {
+        for &f in &map.bottom_faces {
             if let Some(b) = is_bottom.get_mut(f) {
                 *b = true;
             }
@@ -125,20 +141,25 @@ impl CapMap {
         if top_faces.is_empty() {
             return Err(InverseMapError::NoFaces);
         }
-        let top = Locator::new(&self.plane[..], top_faces.iter().map(|&f| mesh.faces[f]).collect::<Vec<_>>());
+        // A borrowed map lends its planar positions to the locator; an owned one is moved into
+        // the InverseMap, so the locator keeps a copy.
+        let plane: Cow<'a, [[f64; 2]]> = match &map {
+            Cow::Borrowed(m) => Cow::Borrowed(&m.plane[..]),
+            Cow::Owned(m) => Cow::Owned(m.plane.clone()),
+        };
+        let top = Locator::new(plane, top_faces.iter().map(|&f| mesh.faces[f]).collect::<Vec<_>>());
         let bottom_list: Vec<usize> = (0..mesh.n_faces()).filter(|&f| is_bottom[f]).collect();
         let bottom = (!bottom_list.is_empty()).then(|| {
-            let flat: Vec<[f64; 2]> = self.cap.iter().map(|p| [p[0], p[1]]).collect();
+            let flat: Vec<[f64; 2]> = map.cap.iter().map(|p| [p[0], p[1]]).collect();
             let faces: Vec<[u32; 3]> = bottom_list.iter().map(|&f| mesh.faces[f]).collect();
             let (corners, rim_radius) = polygon_by_angle(faces.iter().flatten().map(|&v| flat[v as usize]).collect());
             Bottom { locator: Locator::new(flat, faces), faces: bottom_list, corners, rim_radius }
         });
-        let disk_radius = self.plane.iter().map(|p| p[0].hypot(p[1])).fold(0.0, f64::max);
-        Ok(InverseMap { mesh, map: self, top, top_faces, bottom, z_star: self.report.z_star, disk_radius, tolerance: options.tolerance })
+        let disk_radius = map.plane.iter().map(|p| p[0].hypot(p[1])).fold(0.0, f64::max);
+        let z_star = map.report.z_star;
+        Ok(InverseMap { mesh, map, top, top_faces, bottom, z_star, disk_radius, tolerance: options.tolerance })
     }
-}
 
-impl<'a> InverseMap<'a> {
     /// The surface point of the cap point `x`, or `None` when `x` is off the cap (beyond
     /// [`InverseOptions::tolerance`]) or not finite.
     pub fn locate(&self, x: [f64; 3]) -> Option<SurfacePoint> {
@@ -215,8 +236,13 @@ impl<'a> InverseMap<'a> {
     }
 
     /// The surface (the mesh this map inverts).
-    pub fn mesh(&self) -> &'a TriMesh {
-        self.mesh
+    pub fn mesh(&self) -> &TriMesh {
+        &self.mesh
+    }
+
+    /// The map this inverts.
+    pub fn map(&self) -> &CapMap {
+        &self.map
     }
 
     /// The faces outside the punctured quad (all faces of an open surface), in the numbering

@@ -9,7 +9,7 @@ use super::status::{guard, capmesh_v1_status, Failure};
 use super::view::{capmesh_v1_mesh_view, read_view};
 use crate::param::parameterize;
 use crate::metrics::remesh_metrics;
-use crate::remesh::remesh;
+use crate::remesh::{remesh, remesh_located};
 
 /// Write the optional report string.
 ///
@@ -91,6 +91,45 @@ pub unsafe extern "C" fn capmesh_v1_remesh(
         let (out, report) = remesh(&input, &options, &progress)?;
         unsafe { write_report(out_report_json, &report) }?;
         unsafe { *out_mesh = capmesh_v1_mesh::from_trimesh(&out).into_raw() };
+        Ok(())
+    })
+}
+
+/// `capmesh_v1_remesh`, also recording where each new vertex lies on the input: the mesh's
+/// `capmesh_v1_mesh_source_faces` and `capmesh_v1_mesh_source_barycentrics` give each vertex's
+/// input triangle and the weights of its corners (through the inverse map), with which per-vertex
+/// data of the input (colour, quality, thickness...) can be interpolated onto the remesh.
+///
+/// # Safety
+/// As `capmesh_v1_parameterize`.
+#[no_mangle]
+pub unsafe extern "C" fn capmesh_v1_remesh_located(
+    mesh: *const capmesh_v1_mesh_view,
+    options: *const capmesh_v1_remesh_options,
+    progress: capmesh_v1_progress_fn,
+    user_data: *mut c_void,
+    out_mesh: *mut *mut capmesh_v1_mesh,
+    out_report_json: *mut *mut c_char,
+) -> capmesh_v1_status {
+    guard(|| {
+        // SAFETY (all blocks below): pointers as documented by the caller's contract.
+        unsafe { clear_optional_out(out_report_json) };
+        unsafe { clear_out(out_mesh, "out_mesh") }?;
+        let input = unsafe { read_view(mesh, "mesh") }?;
+        let options = match unsafe { options.as_ref() } {
+            Some(o) => remesh_options(o)?,
+            None => remesh_options(&super::options::capmesh_v1_remesh_options_default())?,
+        };
+        let progress = CallbackProgress::new(progress, user_data);
+        let (out, report, points) = remesh_located(&input, &options, &progress)?;
+        if points.len() != out.n_vertices() {
+            return Err(Failure::new(
+                capmesh_v1_status::CAPMESH_V1_INTERNAL,
+                format!("the remesh located {} of its {} vertices", points.len(), out.n_vertices()),
+            ));
+        }
+        unsafe { write_report(out_report_json, &report) }?;
+        unsafe { *out_mesh = capmesh_v1_mesh::from_trimesh(&out).with_sources(&points).into_raw() };
         Ok(())
     })
 }

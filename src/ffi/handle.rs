@@ -3,6 +3,7 @@
 use std::ffi::{c_char, CString};
 
 use super::status::Failure;
+use crate::cap::SurfacePoint;
 use crate::mesh::TriMesh;
 
 /// A mesh produced by capmesh. Opaque; read it with the `capmesh_v1_mesh_*` accessors and
@@ -11,6 +12,8 @@ use crate::mesh::TriMesh;
 pub struct capmesh_v1_mesh {
     positions: Vec<f64>,
     triangles: Vec<u32>,
+    /// Per vertex, its input face and barycentric weights (`capmesh_v1_remesh_located`).
+    sources: Option<(Vec<u32>, Vec<f64>)>,
 }
 
 impl capmesh_v1_mesh {
@@ -18,7 +21,16 @@ impl capmesh_v1_mesh {
         Self {
             positions: mesh.vertices.iter().flatten().copied().collect(),
             triangles: mesh.faces.iter().flatten().copied().collect(),
+            sources: None,
         }
+    }
+
+    /// With each vertex's point of the input surface (one per vertex of the mesh).
+    pub(crate) fn with_sources(mut self, points: &[SurfacePoint]) -> Self {
+        let faces = points.iter().map(|p| p.face as u32).collect();
+        let weights = points.iter().flat_map(|p| p.barycentric).collect();
+        self.sources = Some((faces, weights));
+        self
     }
 
     pub(crate) fn into_raw(self) -> *mut capmesh_v1_mesh {
@@ -65,6 +77,29 @@ pub unsafe extern "C" fn capmesh_v1_mesh_positions(mesh: *const capmesh_v1_mesh)
 pub unsafe extern "C" fn capmesh_v1_mesh_triangles(mesh: *const capmesh_v1_mesh) -> *const u32 {
     // SAFETY: as above.
     unsafe { mesh.as_ref() }.map_or(std::ptr::null(), |m| m.triangles.as_ptr())
+}
+
+/// For a mesh from `capmesh_v1_remesh_located`: `vertex_count` input triangle indices, the
+/// input face each vertex lies on (NULL for other meshes and for NULL).
+///
+/// # Safety
+/// As for `capmesh_v1_mesh_vertex_count`; the pointer is valid until the mesh is released.
+#[no_mangle]
+pub unsafe extern "C" fn capmesh_v1_mesh_source_faces(mesh: *const capmesh_v1_mesh) -> *const u32 {
+    // SAFETY: as above.
+    unsafe { mesh.as_ref() }.and_then(|m| m.sources.as_ref()).map_or(std::ptr::null(), |(f, _)| f.as_ptr())
+}
+
+/// For a mesh from `capmesh_v1_remesh_located`: `3 * vertex_count` barycentric weights, per
+/// vertex those of the corners of its input face (`capmesh_v1_mesh_source_faces`), in the
+/// input triangle's order (non-negative, sum 1). NULL for other meshes and for NULL.
+///
+/// # Safety
+/// As for `capmesh_v1_mesh_vertex_count`; the pointer is valid until the mesh is released.
+#[no_mangle]
+pub unsafe extern "C" fn capmesh_v1_mesh_source_barycentrics(mesh: *const capmesh_v1_mesh) -> *const f64 {
+    // SAFETY: as above.
+    unsafe { mesh.as_ref() }.and_then(|m| m.sources.as_ref()).map_or(std::ptr::null(), |(_, w)| w.as_ptr())
 }
 
 /// Release a mesh returned by capmesh. NULL is accepted and ignored.

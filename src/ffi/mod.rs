@@ -1,4 +1,5 @@
-//! The C ABI (feature `capi`): `capmesh_v1_*` functions (parameterize, remesh, harmonics, metrics) over plain mesh views, opaque result
+//! The C ABI (feature `capi`): `capmesh_v1_*` functions (parameterize, remesh, harmonics, metrics,
+//! the cap map's inverse and forward map) over plain mesh views, opaque result
 //! handles, status codes with a thread-local last-error text and a progress callback that can
 //! cancel. `cbindgen` turns this module into `cpp/include/capmesh.h` (see `tools/capi-header`).
 //!
@@ -15,6 +16,7 @@
 pub mod entry;
 pub mod handle;
 pub mod harmonics;
+pub mod map;
 pub mod options;
 pub mod progress;
 pub mod status;
@@ -23,6 +25,7 @@ pub mod view;
 pub use entry::*;
 pub use handle::*;
 pub use harmonics::*;
+pub use map::*;
 pub use options::*;
 pub use progress::*;
 pub use status::*;

@@ -162,6 +162,21 @@ pub enum ReadError {
         message: String,
     },
 
+    /// A vertex property asked for by name that the PLY file does not have.
+    #[error(
+        "{}: the PLY vertex element has no property '{name}' (its properties: {available}); \
+         name one of them, or pass a per-vertex data file (.gii, FreeSurfer curv)",
+        path.display()
+    )]
+    NoPlyProperty {
+        /// The file.
+        path: PathBuf,
+        /// The property asked for.
+        name: String,
+        /// The vertex element's properties, comma-separated.
+        available: String,
+    },
+
     /// A GIFTI feature capmesh does not read.
     #[error(
         "{}, {at}: unsupported GIFTI file: {message}; save it again as a GIFTI with ASCII, \

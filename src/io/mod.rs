@@ -211,6 +211,25 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh, ReadError> {
     parse(path, &bytes, format)
 }
 
+/// Read a PLY mesh (optionally `.gz`) with its scalar vertex properties `names` (`quality`,
+/// `red`, `thickness`, ...), one value per vertex each: what `remesh --attribute NAME` carries.
+/// Floating-point properties and the colour channels are scalars, other integer properties
+/// labels. A name the file does not have is [`ReadError::NoPlyProperty`], listing those it has.
+pub fn read_ply_with_vertex_attributes(path: &Path, names: &[&str]) -> Result<(TriMesh, Vec<VertexAttribute>), ReadError> {
+    if Format::from_path(path) != Some(Format::Ply) {
+        return Err(ReadError::WrongKind {
+            path: path.to_path_buf(),
+            message: "vertex properties are read by name from PLY files only; pass a per-vertex data file (.gii, FreeSurfer curv) instead".into(),
+        });
+    }
+    let bytes = load(path)?;
+    let (mesh, attributes) = ply::read_vertex_properties(path, &bytes, names)?;
+    if mesh.faces.is_empty() {
+        return Err(ReadError::NoFaces { path: path.to_path_buf(), n_vertices: mesh.n_vertices() });
+    }
+    Ok((mesh, attributes))
+}
+
 /// Parse a mesh from memory (for fuzzing and tests). Errors name the file `<bytes>`.
 pub fn read_mesh_from_bytes(bytes: &[u8], format: Format) -> Result<TriMesh, ReadError> {
     parse(Path::new("<bytes>"), bytes, format)

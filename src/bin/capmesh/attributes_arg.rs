@@ -1,4 +1,5 @@
-//! `remesh --attribute PATH`: the per-vertex data files read against the input, and where
+//! `remesh --attribute PATH|NAME`: the per-vertex data files read against the input (or the
+//! PLY input's vertex properties named), and where
 //! their values carried to the remesh go (PLY vertex properties, or GIFTI data files beside a
 //! GIFTI output). The carrying is [`capmesh::carry_attribute`].
 
@@ -8,18 +9,45 @@ use capmesh::io::{Format, VertexAttribute, VertexProperties};
 use capmesh::{AttributeData, TriMesh};
 use std::path::{Path, PathBuf};
 
-/// Read every `--attribute` file against the input mesh; refuse an output format that cannot
-/// hold them before any work is done.
-pub fn read_all(paths: &[PathBuf], input: &TriMesh, output: &Path) -> Result<Vec<VertexAttribute>, Failure> {
+/// Read every `--attribute` against the input mesh, in the order given: a path of an existing
+/// file is a per-vertex data file; otherwise, for a PLY input, the name of one of its vertex
+/// properties (`quality`, `red`, ...). Refuse an output format that cannot hold them before
+/// any work is done.
+pub fn read_all(paths: &[PathBuf], input_path: &Path, input: &TriMesh, output: &Path) -> Result<Vec<VertexAttribute>, Failure> {
     if paths.is_empty() {
         return Ok(Vec::new());
     }
     if !matches!(Format::from_path(output), Some(Format::Ply | Format::Gifti)) {
         return Err(format!("--attribute needs a .ply output (vertex properties) or a .gii output (data files beside it), not {}", output.display()).into());
     }
+    let input_is_ply = Format::from_path(input_path) == Some(Format::Ply);
+    let names: Vec<&str> = paths.iter().filter(|p| !p.is_file()).filter_map(|p| p.to_str()).collect();
+    if let Some(p) = paths.iter().find(|p| !p.is_file() && (!input_is_ply || p.to_str().is_none())) {
+        return Err(format!(
+            "--attribute {}: there is no such file, and only a PLY input's vertex properties can be named \
+             ({} is not PLY); pass a per-vertex data file (.gii, FreeSurfer curv)",
+            p.display(),
+            input_path.display()
+        )
+        .into());
+    }
+    let mut from_ply = if names.is_empty() {
+        Vec::new()
+    } else {
+        let (mesh, attributes) = capmesh::io::read_ply_with_vertex_attributes(input_path, &names).map_err(|e| format!("--attribute: {e}"))?;
+        if mesh.n_vertices() != input.n_vertices() {
+            return Err(format!("{}: read {} vertices with the properties, {} without (a bug)", input_path.display(), mesh.n_vertices(), input.n_vertices()).into());
+        }
+        attributes
+    }
+    .into_iter();
     let mut all = Vec::new();
     for p in paths {
-        all.extend(capmesh::io::read_vertex_attributes_for(p, input).map_err(|e| e.to_string())?);
+        if p.is_file() {
+            all.extend(capmesh::io::read_vertex_attributes_for(p, input).map_err(|e| e.to_string())?);
+        } else {
+            all.extend(from_ply.next());
+        }
     }
     Ok(all)
 }

@@ -91,9 +91,10 @@ enum Command {
         /// Output mesh.
         #[arg(short, long)]
         output: PathBuf,
-        /// Carry a per-vertex data file (GIFTI .shape/.func/.label.gii, FreeSurfer curv) to
-        /// the remesh (repeatable): PLY vertex properties, or .gii files beside a GIFTI output.
-        #[arg(long, value_name = "PATH")]
+        /// Carry a per-vertex data file (GIFTI .shape/.func/.label.gii, FreeSurfer curv), or a
+        /// vertex property of a PLY input by name (quality, red, ...), to the remesh
+        /// (repeatable): PLY vertex properties, or .gii files beside a GIFTI output.
+        #[arg(long, value_name = "PATH|NAME")]
         attribute: Vec<PathBuf>,
         /// Target face count of the uniform cap mesh.
         #[arg(long, default_value_t = 5000, conflicts_with = "lat_long")]
@@ -374,7 +375,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             let t_read = std::time::Instant::now();
             let m = read(&input)?;
-            let attributes = attributes_arg::read_all(&attribute, &m, &output)?;
+            let attributes = attributes_arg::read_all(&attribute, &input, &m, &output)?;
             let read_seconds = t_read.elapsed().as_secs_f64();
             let bar = cli_progress::Bar::new(cli.quiet);
             let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };

@@ -2,7 +2,9 @@
 //!
 //! Reads the `vertex` element's `x`, `y`, `z` (any scalar type) and the `face` element's
 //! `vertex_indices` (or `vertex_index`) list (any integer count and index types), skipping
-//! every other property and element, lists included. Polygons are fan-triangulated. Writes
+//! every other property and element, lists included; [`read_vertex_properties`] also reads
+//! named scalar vertex properties (`quality`, `red`, ...: what `remesh --attribute NAME`
+//! carries). Polygons are fan-triangulated. Writes
 //! `double` coordinates, `uchar`/`int` index lists and, when given, `float` vertex
 //! properties (`texture_u`/`texture_v`, named attributes: [`VertexProperties`]).
 
@@ -12,17 +14,19 @@ mod source;
 use std::io::Write;
 use std::path::Path;
 
-use self::header::{Element, Encoding, Property};
+use self::header::{Element, Encoding, Property, Scalar};
 use self::source::{AsciiSource, BinarySource, Source, ValueError};
 use super::error::{Location, ReadError};
 use super::{fan, parse_error};
-use super::VertexProperties;
+use super::{AttributeData, VertexAttribute, VertexProperties};
 use crate::mesh::TriMesh;
 
 /// What a property means to us.
 #[derive(Clone, Copy)]
 enum Role {
     Coordinate(usize),
+    /// The `k`-th vertex property asked for by [`read_vertex_properties`].
+    Extra(usize),
     Indices,
     Skip,
 }
@@ -75,6 +79,39 @@ fn face_roles(path: &Path, element: &Element) -> Result<Vec<Role>, ReadError> {
 
 /// Parse a PLY file's bytes.
 pub(crate) fn read(path: &Path, data: &[u8]) -> Result<TriMesh, ReadError> {
+    read_with(path, data, &[]).map(|(mesh, _)| mesh)
+}
+
+/// The vertex properties named `names` of a PLY file (each a scalar property of the `vertex`
+/// element), one value per vertex each, with the mesh; the property's type says how the
+/// remesh carries it: floating-point values and the colour channels (`red`, `green`, `blue`,
+/// `alpha`) are [`AttributeData::Scalar`] (interpolated), other integers
+/// [`AttributeData::Label`] (the nearest corner's value).
+pub(crate) fn read_vertex_properties(path: &Path, data: &[u8], names: &[&str]) -> Result<(TriMesh, Vec<VertexAttribute>), ReadError> {
+    let (mesh, extras) = read_with(path, data, names)?;
+    let mut attributes = Vec::with_capacity(extras.len());
+    for (name, (ty, values)) in names.iter().zip(extras) {
+        let colour = ["red", "green", "blue", "alpha"].contains(name);
+        let data = if ty.is_integer() && !colour {
+            let mut labels = Vec::with_capacity(values.len());
+            for (v, x) in values.iter().enumerate() {
+                let label = i32::try_from(*x as i64).map_err(|_| {
+                    unsupported(path, format!("vertex {v}'s '{name}' = {x} does not fit a 32-bit label"))
+                })?;
+                labels.push(label);
+            }
+            AttributeData::Label(labels)
+        } else {
+            AttributeData::Scalar(values.iter().map(|&x| x as f32).collect())
+        };
+        attributes.push(VertexAttribute { name: name.to_string(), data, label_table: Vec::new() });
+    }
+    Ok((mesh, attributes))
+}
+
+/// Parse a PLY file's bytes, also reading the vertex properties `extra` (their types and
+/// values, in that order).
+fn read_with(path: &Path, data: &[u8], extra: &[&str]) -> Result<(TriMesh, Vec<(Scalar, Vec<f64>)>), ReadError> {
     let header = header::parse(path, data)?;
     let vertex = header.elements.iter().position(|e| e.name == b"vertex");
     let face = header.elements.iter().position(|e| e.name == b"face");
@@ -95,10 +132,33 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<TriMesh, ReadError> {
         }
         roles[v] = vertex_roles(path, &header.elements[v])?;
     }
+    let mut extra_types = Vec::with_capacity(extra.len());
+    for (k, name) in extra.iter().enumerate() {
+        let element = vertex.map(|v| &header.elements[v]);
+        let found = element.and_then(|e| e.properties.iter().position(|p| p.name() == name.as_bytes()));
+        let (Some(v), Some(i)) = (vertex, found) else {
+            let available: Vec<String> = element
+                .map(|e| e.properties.iter().map(|p| String::from_utf8_lossy(p.name()).into_owned()).collect())
+                .unwrap_or_default();
+            return Err(ReadError::NoPlyProperty { path: path.to_path_buf(), name: name.to_string(), available: available.join(", ") });
+        };
+        match header.elements[v].properties[i] {
+            Property::Scalar { ty, .. } if matches!(roles[v][i], Role::Skip) => {
+                roles[v][i] = Role::Extra(k);
+                extra_types.push(ty);
+            }
+            Property::Scalar { .. } => {
+                return Err(unsupported(path, format!("the vertex property '{name}' is a coordinate or named twice; name another one")))
+            }
+            Property::List { .. } => {
+                return Err(unsupported(path, format!("the vertex property '{name}' is a list, not one value per vertex")))
+            }
+        }
+    }
     if let Some(f) = face {
         roles[f] = face_roles(path, &header.elements[f])?;
     }
-    match header.encoding {
+    let (mesh, values) = match header.encoding {
         Encoding::Ascii => {
             let mut src = AsciiSource::new(data, header.data_start, header.header_lines + 1);
             read_data(path, &header.elements, &roles, vertex, face, &mut src)
@@ -108,7 +168,8 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<TriMesh, ReadError> {
             let mut src = BinarySource::new(data, header.data_start, big);
             read_data(path, &header.elements, &roles, vertex, face, &mut src)
         }
-    }
+    }?;
+    Ok((mesh, extra_types.into_iter().zip(values).collect()))
 }
 
 /// Read one element instance; `on_coordinate` / `on_indices` receive the values we keep.
@@ -117,11 +178,13 @@ fn read_instance<S: Source>(
     element: &Element,
     roles: &[Role],
     xyz: &mut [f64; 3],
+    extras: &mut [f64],
     polygon: &mut Vec<i64>,
 ) -> Result<(), ValueError> {
     for (property, role) in element.properties.iter().zip(roles) {
         match (property, role) {
             (Property::Scalar { ty, .. }, Role::Coordinate(k)) => xyz[*k] = src.real(*ty)?,
+            (Property::Scalar { ty, .. }, Role::Extra(k)) => extras[*k] = src.real(*ty)?,
             (Property::Scalar { ty, .. }, _) => src.skip(*ty, 1)?,
             (Property::List { count, item, .. }, role) => {
                 let n = src.integer(*count)?;
@@ -151,7 +214,10 @@ fn read_data<S: Source>(
     vertex: Option<usize>,
     face: Option<usize>,
     src: &mut S,
-) -> Result<TriMesh, ReadError> {
+) -> Result<(TriMesh, Vec<Vec<f64>>), ReadError> {
+    let n_extra = roles.iter().flatten().filter(|r| matches!(r, Role::Extra(_))).count();
+    let mut extra_values: Vec<Vec<f64>> = vec![Vec::new(); n_extra];
+    let mut extras = vec![0.0; n_extra];
     let mut vertices: Vec<[f64; 3]> = Vec::new();
     let mut faces: Vec<[u32; 3]> = Vec::new();
     let mut vertices_read = false;
@@ -180,7 +246,7 @@ fn read_data<S: Source>(
             let at = src.location();
             let mut xyz = [0.0; 3];
             polygon.clear();
-            read_instance(src, element, &roles[e], &mut xyz, &mut polygon).map_err(
+            read_instance(src, element, &roles[e], &mut xyz, &mut extras, &mut polygon).map_err(
                 |err| match err {
                     ValueError::Eof => ReadError::Truncated {
                         path: path.to_path_buf(),
@@ -203,6 +269,9 @@ fn read_data<S: Source>(
                     });
                 }
                 vertices.push(xyz);
+                for (values, &x) in extra_values.iter_mut().zip(&extras) {
+                    values.push(x);
+                }
             } else if Some(e) == face {
                 if polygon.len() < 3 {
                     return Err(parse_error(
@@ -244,7 +313,7 @@ fn read_data<S: Source>(
             n_vertices: vertices.len(),
         });
     }
-    Ok(TriMesh::new(vertices, faces))
+    Ok((TriMesh::new(vertices, faces), extra_values))
 }
 
 fn write_header(w: &mut dyn Write, mesh: &TriMesh, extra: &VertexProperties, format: &str) -> std::io::Result<()> {
