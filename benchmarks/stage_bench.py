@@ -253,7 +253,7 @@ def write_scale_report(rows, info, series):
         "# Growth of `capmesh remesh` with the mesh size (issue 27)",
         "",
         f"Machine: {info['cpu']}, {info['cores']} cores, {info['memory']}; {info['os']}; {info['rustc']}; {info['date']}.",
-        "One run of `bash benchmarks/stage_bench.sh --scale --skip-meshlab`: `capmesh remesh IN --faces "
+        "One run of `bash benchmarks/stage_bench.sh --scale`: `capmesh remesh IN --faces "
         f"{FACES}` per mesh, once each, in its own process. The machine is shared"
         + (f" (load average {load[0]:.1f} at the start, {load[1]:.1f} at the end on {info['cores']} cores)" if load else "")
         + ": the seconds are wall time under that load and vary from run to run; CPU seconds (user + system) of the whole process are given beside them.",
@@ -267,13 +267,14 @@ def write_scale_report(rows, info, series):
     for r in rows:
         o = r["ours"]
         if o.get("status") != 0:
-            lines.append(f"| {r['name']} | - | {o.get('status')}: {o.get('error', '')} after {o['wall_seconds']:.0f} s, peak {o['peak_rss_mib']:.0f} MiB |" + " |" * 11)
+            lines.append(f"| {r['name']} | - | {o.get('status')}: {o.get('error', '')} after {o['wall_seconds']:.0f} s wall, {fmt(o.get('cpu_seconds'), 0)} CPU s, peak {o['peak_rss_mib']:.0f} MiB |" + " |" * 11)
             continue
         lines.append(
             f"| {r['name']} | {o['vertices']} | {fmt(o['flatten'])} | {fmt(o['transport'])} | {fmt(o['regularise'])} | {fmt(o['refine'])} | {fmt(o['pullback'])} | "
             f"{fmt(o['equalize'])} | {fmt(o['param_remesh'])} | {fmt(o.get('cpu_seconds'), 1)} | {o['peak_rss_mib']:.0f} | {o['mean_abs_area_distortion']:.4f} | {o.get('folded_before', '-')} | {o.get('lambda_fallbacks', '-')} |"
         )
-    lines += ["", "Fitted growth exponent (time ~ V^k, least squares over " + ", ".join(series) + "):", "",
+    fitted = [n for n in series if n in ok]
+    lines += ["", "Fitted growth exponent (time ~ V^k, least squares over the completed runs of " + ", ".join(fitted) + "; wall seconds):", "",
               "| stage | " + " | ".join(STAGES) + " |", "|---|" + "---:|" * len(STAGES),
               "| k | " + " | ".join(fmt(exponents[s]) for s in STAGES) + " |", ""]
     a, b = ok.get("closed_brain_choi x2"), ok.get("closed_brain_choi x1")
@@ -285,7 +286,10 @@ def write_scale_report(rows, info, series):
         lines.append(f"1M closed surface: {m['param_remesh']:.1f} s, {m['peak_rss_mib']:.0f} MiB peak ({'met' if met else 'not met'}: 60 s, 4 GiB).")
     br = ok.get("closed_brain_choi")
     if br:
-        lines.append(f"48k brain: param {br['param']:.2f} s ({'met' if br['param'] <= 1 else 'not met'}: 1 s).")
+        lines.append(f"48k brain: param {br['param']:.2f} s wall, {fmt(br.get('cpu_seconds'), 1)} CPU s for the whole process ({'met' if br['param'] <= 1 else 'not met'}: 1 s).")
+    missing = [n for n in [r[0] for r in info.get("cases", [])] if n not in [r["name"] for r in rows]]
+    if missing:
+        lines.append("Not run (the run was stopped before them): " + ", ".join(missing) + ".")
     with open(os.path.join(RESULTS, "stage_bench_scale.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -309,6 +313,7 @@ def scale(args):
     series = ["closed_brain_choi", "closed_brain_choi x1", "closed_brain_choi x2"]
     info = machine()
     info["load_average"] = [os.getloadavg()[0]]
+    info["cases"] = [(n, os.path.basename(p)) for n, p in cases]
     rows = []
     for name, path in cases:
         print(f"{name}: capmesh ...", flush=True)
