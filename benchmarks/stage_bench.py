@@ -9,6 +9,14 @@ timeout is recorded as such. Results: benchmarks/results/stage_bench.{md,json}. 
 benchmarks/stage_bench.sh, which builds capmesh and the synthetic meshes.
 
     stage_bench.py [--sizes 10k,100k,1m] [--skip-meshlab] [--skip-shared] [--limit SECONDS]
+    stage_bench.py --scale [--limit SECONDS]
+
+`--scale` (issue 27) runs only the growth series instead: the 12k and 48k brains of tests/data,
+each midpoint-subdivided once and twice (50k, 194k, 776k vertices: the same surfaces, so the
+same map is expected), and a 1M-vertex closed surface (the bumpy ellipsoid on the geodesic
+sphere), once each without MeshLab; it writes the stage times, peak RSS, mean |d_area| and the
+fitted growth exponent of each stage (least squares of log time on log V over the 48k brain's
+series) to benchmarks/results/stage_bench_scale.{md,json}.
 """
 
 import argparse
@@ -55,8 +63,13 @@ print(json.dumps({"seconds": seconds, "read_seconds": read, "faces": ms.current_
 """
 
 
+LAST_CPU_SECONDS = None
+
+
 def run_child(argv, limit):
-    """Run argv; return (exit status or 'timeout', wall seconds, peak RSS MiB, stdout)."""
+    """Run argv; return (exit status or 'timeout', wall seconds, peak RSS MiB, stdout, stderr);
+    the child's CPU seconds (user + system) are kept in LAST_CPU_SECONDS."""
+    global LAST_CPU_SECONDS
     start = time.perf_counter()
     proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
     deadline = start + limit
@@ -74,6 +87,7 @@ def run_child(argv, limit):
             break
         time.sleep(0.05)
     wall = time.perf_counter() - start
+    LAST_CPU_SECONDS = usage.ru_utime + usage.ru_stime
     out = proc.stdout.read().decode(errors="replace")
     err = proc.stderr.read().decode(errors="replace")
     return status, wall, usage.ru_maxrss / 1024.0, out, err
@@ -85,7 +99,7 @@ def ours(path, workdir, limit):
     if os.path.exists(report):
         os.remove(report)
     status, wall, rss, _, err = run_child([CAPMESH, "--quiet", "remesh", path, "-o", out, "--faces", str(FACES), "--report", report], limit)
-    row = {"status": status, "wall_seconds": wall, "peak_rss_mib": rss}
+    row = {"status": status, "wall_seconds": wall, "peak_rss_mib": rss, "cpu_seconds": LAST_CPU_SECONDS}
     if status != 0:
         row["error"] = err.strip().splitlines()[-1] if err.strip() else str(status)
         return row
@@ -111,6 +125,8 @@ def ours(path, workdir, limit):
         mean_abs_area_distortion=p["area_distortion"]["mean_abs"],
         d_face_relative=r["d_face_relative"],
         faces_out=r["faces"],
+        folded_before=p.get("untangle", {}).get("folded_before"),
+        lambda_fallbacks=len(p.get("lambda_fallbacks", [])),
     )
     # Parameterization plus remeshing, without the quality metrics and the file I/O.
     row["param_remesh"] = row["param"] + row["pullback"] + row["equalize"]
@@ -211,14 +227,115 @@ def write_report(rows, info):
         f.write("\n".join(lines) + "\n")
 
 
+STAGES = ["flatten", "transport", "regularise", "refine", "pullback", "equalize", "param_remesh"]
+
+
+def growth_exponent(points):
+    """Least-squares slope of log(seconds) on log(V) over (V, seconds) points with seconds > 0."""
+    import math
+    pts = [(math.log(v), math.log(t)) for v, t in points if v and t and t > 0]
+    if len(pts) < 2:
+        return None
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    sxx = sum((x - mx) ** 2 for x, _ in pts)
+    return None if sxx == 0 else sum((x - mx) * (y - my) for x, y in pts) / sxx
+
+
+def write_scale_report(rows, info, series):
+    os.makedirs(RESULTS, exist_ok=True)
+    ok = {r["name"]: r["ours"] for r in rows if r["ours"].get("status") == 0}
+    exponents = {st: growth_exponent([(ok[n]["vertices"], ok[n][st]) for n in series if n in ok]) for st in STAGES}
+    with open(os.path.join(RESULTS, "stage_bench_scale.json"), "w") as f:
+        json.dump({"machine": info, "faces": FACES, "rows": rows, "series": series, "growth_exponents": exponents}, f, indent=1)
+    load = info.get("load_average")
+    lines = [
+        "# Growth of `capmesh remesh` with the mesh size (issue 27)",
+        "",
+        f"Machine: {info['cpu']}, {info['cores']} cores, {info['memory']}; {info['os']}; {info['rustc']}; {info['date']}.",
+        "One run of `bash benchmarks/stage_bench.sh --scale`: `capmesh remesh IN --faces "
+        f"{FACES}` per mesh, once each, in its own process. The machine is shared"
+        + (f" (load average {load[0]:.1f} at the start, {load[1]:.1f} at the end on {info['cores']} cores)" if load else "")
+        + ": the seconds are wall time under that load and vary from run to run; CPU seconds (user + system) of the whole process are given beside them.",
+        "Subdivided meshes are the same surface (midpoint 1:4 split, `synth_mesh subdivide`), so their mean |d_area| should match the coarse one's.",
+        "Peak RSS is the whole process's (the report has no per-stage memory).",
+        "Targets (issue 27): time(776k) / time(194k) <= 5 for param+remesh, 1M under 60 s and 4 GiB, 48k brain under 1 s.",
+        "",
+        "| mesh | V | flatten | transport | regularise | refine | pull-back | equalize | param+remesh | CPU s | peak RSS MiB | mean \\|d_area\\| | folds before repair | lambda fallbacks |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for r in rows:
+        o = r["ours"]
+        if o.get("status") != 0:
+            lines.append(f"| {r['name']} | - | {o.get('status')}: {o.get('error', '')} after {o['wall_seconds']:.0f} s wall, {fmt(o.get('cpu_seconds'), 0)} CPU s, peak {o['peak_rss_mib']:.0f} MiB |" + " |" * 11)
+            continue
+        lines.append(
+            f"| {r['name']} | {o['vertices']} | {fmt(o['flatten'])} | {fmt(o['transport'])} | {fmt(o['regularise'])} | {fmt(o['refine'])} | {fmt(o['pullback'])} | "
+            f"{fmt(o['equalize'])} | {fmt(o['param_remesh'])} | {fmt(o.get('cpu_seconds'), 1)} | {o['peak_rss_mib']:.0f} | {o['mean_abs_area_distortion']:.4f} | {o.get('folded_before', '-')} | {o.get('lambda_fallbacks', '-')} |"
+        )
+    fitted = [n for n in series if n in ok]
+    lines += ["", "Fitted growth exponent (time ~ V^k, least squares over the completed runs of " + ", ".join(fitted) + "; wall seconds):", "",
+              "| stage | " + " | ".join(STAGES) + " |", "|---|" + "---:|" * len(STAGES),
+              "| k | " + " | ".join(fmt(exponents[s]) for s in STAGES) + " |", ""]
+    a, b = ok.get("closed_brain_choi x2"), ok.get("closed_brain_choi x1")
+    if a and b:
+        lines.append(f"time(776k) / time(194k), param+remesh: {a['param_remesh'] / b['param_remesh']:.2f} (target <= 5); CPU seconds: {a['cpu_seconds'] / b['cpu_seconds']:.2f}.")
+    m = ok.get("synthetic closed ellipsoid 1m")
+    if m:
+        met = m["param_remesh"] <= 60 and m["peak_rss_mib"] <= 4096
+        lines.append(f"1M closed surface: {m['param_remesh']:.1f} s, {m['peak_rss_mib']:.0f} MiB peak ({'met' if met else 'not met'}: 60 s, 4 GiB).")
+    br = ok.get("closed_brain_choi")
+    if br:
+        lines.append(f"48k brain: param {br['param']:.2f} s wall, {fmt(br.get('cpu_seconds'), 1)} CPU s for the whole process ({'met' if br['param'] <= 1 else 'not met'}: 1 s).")
+    missing = [n for n in [r[0] for r in info.get("cases", [])] if n not in [r["name"] for r in rows]]
+    if missing:
+        lines.append("Not run (the run was stopped before them): " + ", ".join(missing) + ".")
+    with open(os.path.join(RESULTS, "stage_bench_scale.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def scale(args):
+    """The --scale series (see the module docs)."""
+    work = tempfile.mkdtemp(prefix="capmesh-scale-")
+    cases = []
+    for name in ["closed_brain12k_choi", "closed_brain_choi"]:
+        src = os.path.join(DATA, name + ".obj.gz")
+        cases.append((name, src))
+        for k in (1, 2):
+            if name == "closed_brain12k_choi" and k == 2:
+                continue
+            path = os.path.join(work, f"{name}_x{k}.ply")
+            subprocess.run([SYNTH, "subdivide", str(k), src, path], check=True, stdout=subprocess.DEVNULL)
+            cases.append((f"{name} x{k}", path))
+    path = os.path.join(work, "synthetic_closed_1m.ply")
+    subprocess.run([SYNTH, "geodesic", "1000000", path], check=True, stdout=subprocess.DEVNULL)
+    cases.append(("synthetic closed ellipsoid 1m", path))
+    series = ["closed_brain_choi", "closed_brain_choi x1", "closed_brain_choi x2"]
+    info = machine()
+    info["load_average"] = [os.getloadavg()[0]]
+    info["cases"] = [(n, os.path.basename(p)) for n, p in cases]
+    rows = []
+    for name, path in cases:
+        print(f"{name}: capmesh ...", flush=True)
+        o = ours(path, work, args.limit)
+        rows.append({"name": name, "vertices": o.get("vertices"), "ours": o})
+        print(f"  {o.get('status')} param+remesh {fmt(o.get('param_remesh'))} s, CPU {fmt(o.get('cpu_seconds'), 1)} s, peak {o['peak_rss_mib']:.0f} MiB, mean |d_area| {fmt(o.get('mean_abs_area_distortion'), 4)}", flush=True)
+        info["load_average"] = [info["load_average"][0], os.getloadavg()[0]]
+        write_scale_report(rows, info, series)
+    print(f"wrote {os.path.join(RESULTS, 'stage_bench_scale.md')}")
+
+
 def main():
     ap = argparse.ArgumentParser()
+    ap.add_argument("--scale", action="store_true", help="only the growth series of issue 27 (see the module docs)")
     ap.add_argument("--sizes", default="10k,100k,1m")
     ap.add_argument("--skip-meshlab", action="store_true")
     ap.add_argument("--skip-shared", action="store_true")
     ap.add_argument("--limit", type=float, default=1200.0, help="seconds per case")
     ap.add_argument("--repeats", type=int, default=3, help="alternating runs per case (the 1M case runs once); medians are reported")
     args = ap.parse_args()
+    if args.scale:
+        return scale(args)
     sizes = [s for s in args.sizes.split(",") if s]
     cases = []
     if not args.skip_shared:

@@ -5,18 +5,26 @@
 //! * `closed S`: a bumpy ellipsoid, the icosphere of `S` subdivisions (`10 * 4^S + 2`
 //!   vertices) with radius `1 + 0.08 sin(5x) sin(4y) sin(3z)` and axes (1, 0.7, 1.4);
 //! * `geodesic N`: the same ellipsoid on the geodesic sphere of about N vertices
-//!   (`10 f^2 + 2`, frequency `f` the nearest to `sqrt((N - 2) / 10)`).
+//!   (`10 f^2 + 2`, frequency `f` the nearest to `sqrt((N - 2) / 10)`);
+//! * `subdivide K IN OUT`: the mesh IN midpoint-subdivided K times
+//!   ([`capmesh::mesh::subdivide_midpoint`], the same surface with `4^K` times the faces).
 //!
 //! `cargo run --release --example synth_mesh -- open 100000 out.ply`
 
-use capmesh::io::write_mesh;
+use capmesh::io::{read_mesh, write_mesh};
 use capmesh::mesh::shapes::{geodesic_sphere, grid_disk, icosphere};
+use capmesh::mesh::subdivide_midpoint;
 use std::path::Path;
 
 fn main() {
-    let args: Vec<String> = std::env::args().collect();
+    let mut args: Vec<String> = std::env::args().collect();
+    if args.len() == 5 && args[1] == "subdivide" {
+        // subdivide K IN OUT: read IN here, then the kind's usual path writes OUT.
+        let input = args.remove(3);
+        return subdivide(&args[2], Path::new(&input), Path::new(&args[3]));
+    }
     if args.len() != 4 {
-        eprintln!("usage: synth_mesh open N OUT | closed SUBDIVISIONS OUT | geodesic N OUT");
+        eprintln!("usage: synth_mesh open N OUT | closed SUBDIVISIONS OUT | geodesic N OUT | subdivide K IN OUT");
         std::process::exit(2);
     }
     let size: usize = args[2].parse().unwrap_or_else(|_| {
@@ -46,6 +54,24 @@ fn main() {
         std::process::exit(1);
     }
     println!("{} vertices, {} faces -> {}", mesh.vertices.len(), mesh.faces.len(), args[3]);
+}
+
+/// `synth_mesh subdivide K IN OUT`.
+fn subdivide(times: &str, input: &Path, output: &Path) {
+    let times: usize = times.parse().unwrap_or_else(|_| {
+        eprintln!("synth_mesh: '{times}' is not a count of subdivisions");
+        std::process::exit(2)
+    });
+    let mesh = read_mesh(input).unwrap_or_else(|e| {
+        eprintln!("synth_mesh: {e}");
+        std::process::exit(1)
+    });
+    let mesh = subdivide_midpoint(&mesh, times);
+    if let Err(e) = write_mesh(output, &mesh) {
+        eprintln!("synth_mesh: {e}");
+        std::process::exit(1);
+    }
+    println!("{} vertices, {} faces -> {}", mesh.vertices.len(), mesh.faces.len(), output.display());
 }
 
 /// The unit sphere `m` made a bumpy ellipsoid: radius `1 + 0.08 sin(5x) sin(4y) sin(3z)`,

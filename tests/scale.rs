@@ -1,0 +1,44 @@
+//! A finer mesh of the same surface maps as well as the coarse one (issue 27): the 12k brain
+//! midpoint-subdivided once (about 50k vertices, the same geometry) maps onto the adaptive cap
+//! with mean |d_area| within 1.5x of the 12k brain's and no folded face. The large sizes
+//! (194k, 776k, 1M vertices) and their times live in `benchmarks/stage_bench.sh`, not here.
+
+mod common;
+
+use capmesh::io::read_mesh;
+use capmesh::mesh::subdivide_midpoint;
+use capmesh::param::{parameterize, MapQuality, ParamOptions};
+use capmesh::progress::NoProgress;
+use common::data;
+
+#[test]
+fn the_subdivided_12k_brain_maps_as_well_as_the_12k_brain() {
+    let coarse = read_mesh(&data("closed_brain12k_choi.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
+    let fine = subdivide_midpoint(&coarse, 1);
+    assert_eq!(fine.n_faces(), 4 * coarse.n_faces());
+    assert!(fine.n_vertices() > 49_000, "{} vertices", fine.n_vertices());
+    let options = ParamOptions::default();
+    let a = parameterize(&coarse, &options, &NoProgress).unwrap_or_else(|e| panic!("12k brain: {e}"));
+    let b = parameterize(&fine, &options, &NoProgress).unwrap_or_else(|e| panic!("subdivided 12k brain: {e}"));
+    let (ra, rb) = (&a.report, &b.report);
+    eprintln!(
+        "12k brain: mean |d_area| {:.4}, folds before repair {} | subdivided ({} vertices): {:.4}, folds before repair {}, fallbacks {}",
+        ra.area_distortion.mean_abs,
+        ra.untangle.folded_before,
+        fine.n_vertices(),
+        rb.area_distortion.mean_abs,
+        rb.untangle.folded_before,
+        rb.lambda_fallbacks.len()
+    );
+    assert_eq!(ra.flipped_faces, 0, "12k brain: folded faces");
+    assert_eq!(rb.flipped_faces, 0, "subdivided 12k brain: folded faces");
+    assert_eq!(rb.quality, MapQuality::Good);
+    assert!(
+        rb.area_distortion.mean_abs <= 1.5 * ra.area_distortion.mean_abs,
+        "subdivided 12k brain: mean |d_area| {} is more than 1.5x the 12k brain's {}",
+        rb.area_distortion.mean_abs,
+        ra.area_distortion.mean_abs
+    );
+    // The same surface needs no second attempt with a larger lambda.
+    assert!(rb.lambda_fallbacks.is_empty(), "subdivided 12k brain: {:?}", rb.lambda_fallbacks);
+}
