@@ -92,7 +92,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     let bar = cli_progress::Bar::new(quiet);
     let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
     let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing);
-    let mut options = RemeshOptions { grid, area_equalization, optimize, shape, ..Default::default() };
+    let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape);
     map.apply(&mut options.param);
     let (out, rep, points) = capmesh::remesh_located(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
     bar.finish();
