@@ -31,7 +31,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod cap;
-pub mod error;
+pub(crate) mod error;
 #[cfg(feature = "capi")]
 pub mod ffi;
 pub mod flatten;

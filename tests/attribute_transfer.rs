@@ -17,7 +17,7 @@ fn brain() -> std::path::PathBuf {
 #[test]
 fn linear_values_and_labels_are_carried() {
     let mesh = read_mesh(&brain()).unwrap();
-    let options = RemeshOptions { grid: CapGrid::Uniform { faces: 3000 }, ..Default::default() };
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 3000 });
     let (out, _, points) = remesh_located(&mesh, &options, &NoProgress).unwrap();
     assert_eq!(points.len(), out.n_vertices());
     let f = |p: [f64; 3]| 0.3 * p[0] - 1.2 * p[1] + 0.7 * p[2] + 5.0;

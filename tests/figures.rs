@@ -110,7 +110,7 @@ fn closed_surface_histograms_leave_out_the_punctured_quad() {
 #[test]
 fn remesh_figures_compare_with_the_input() {
     let m = mesh("open_meg_helmet_babysquid_mne.obj.gz");
-    let options = RemeshOptions { grid: CapGrid::Uniform { faces: 1500 }, ..Default::default() };
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 1500 });
     let (out, rep) = remesh(&m, &options, &NoProgress).unwrap();
     let dir = TempDir::new("figures-remesh");
     let set = remesh_figures(&dir, "helmet", &m, &out, &rep, &FigureOptions::default()).unwrap();

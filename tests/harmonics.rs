@@ -7,7 +7,6 @@ mod common;
 use common::data;
 
 use std::f64::consts::PI;
-use std::time::Instant;
 
 use capmesh::harmonics::legendre::triangle_index;
 use capmesh::harmonics::{
@@ -489,16 +488,9 @@ fn reconstruction_on(name: &str, bound_at_15: f64) {
     )
     .unwrap_or_else(|e| panic!("{name}: {e}"));
     let z_star = map.report.z_star.expect("the adaptive domain has a Z*");
-    let start = Instant::now();
     let f = fit(&map.cap, &mesh.vertices, z_star, 15).unwrap_or_else(|e| panic!("{name}: {e}"));
-    let fit_seconds = start.elapsed().as_secs_f64();
-    let start = Instant::now();
     let errors = f.errors_by_order(&map.cap, &mesh.vertices).unwrap();
-    let all_seconds = start.elapsed().as_secs_f64();
-    eprintln!(
-        "{name}: {} vertices, Z* = {z_star:.4}; fit at N = 15 {fit_seconds:.2} s, all orders 0..=15 {all_seconds:.2} s",
-        mesh.vertices.len()
-    );
+    eprintln!("{name}: {} vertices, Z* = {z_star:.4}", mesh.vertices.len());
     for e in &errors {
         eprintln!(
             "  N = {:2}: mean {:.5} max {:.5} (relative to the bounding-box diagonal)",

@@ -6,16 +6,13 @@
 
 mod common;
 
+use common::cli::{capmesh, harmonics, HarmonicsFiles};
+use common::csv::Table;
 use common::{data, TempDir};
 
 use capmesh::harmonics::{aspect_ratio, basis_index, basis_len, fit, order_one_ellipsoid, HarmonicFit};
 use std::collections::HashMap;
 use std::path::Path;
-use std::process::Command;
-
-fn capmesh() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_capmesh"))
-}
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
@@ -27,21 +24,9 @@ fn harmonics_on_the_face_writes_reconstruction_coefficients_and_report() {
     let dir = TempDir::new("harmonics-cli-face");
     let input = data("open_face_choi.obj.gz");
     let before = std::fs::read(&input).unwrap();
-    let (out, coefficients, report, cap) =
-        (dir.join("face_ah.ply"), dir.join("c.json"), dir.join("r.json"), dir.join("cap.obj"));
-    let run = capmesh()
-        .args(["harmonics", "--quiet", "--order", &ORDER.to_string()])
-        .arg(&input)
-        .arg("-o")
-        .arg(&out)
-        .arg("--coefficients")
-        .arg(&coefficients)
-        .arg("--report")
-        .arg(&report)
-        .arg("--cap-mesh")
-        .arg(&cap)
-        .output()
-        .unwrap();
+    let files = HarmonicsFiles::in_dir(&dir, "face_ah.ply");
+    let (out, coefficients, report, cap) = (&files.output, &files.coefficients, &files.report, &files.cap_mesh);
+    let run = harmonics(&input, &["--order", &ORDER.to_string()], &files);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     eprintln!("{}", String::from_utf8_lossy(&run.stdout));
     assert_eq!(std::fs::read(&input).unwrap(), before, "input modified");
@@ -160,24 +145,6 @@ fn harmonics_refuses_bad_requests_before_any_work() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("not the planar disk"));
 }
 
-/// Fields of one CSV line (RFC 4180 quoting, no newlines inside fields).
-fn csv_fields(line: &str) -> Vec<String> {
-    let (mut fields, mut field, mut quoted, mut chars) = (Vec::new(), String::new(), false, line.chars().peekable());
-    while let Some(c) = chars.next() {
-        match (c, quoted) {
-            ('"', true) if chars.peek() == Some(&'"') => {
-                field.push('"');
-                chars.next();
-            }
-            ('"', _) => quoted = !quoted,
-            (',', false) => fields.push(std::mem::take(&mut field)),
-            _ => field.push(c),
-        }
-    }
-    fields.push(field);
-    fields
-}
-
 #[test]
 fn shape_analyses_a_cohort_and_names_the_bad_mesh() {
     let dir = TempDir::new("harmonics-cli-cohort");
@@ -203,15 +170,14 @@ fn shape_analyses_a_cohort_and_names_the_bad_mesh() {
 
     let text = std::fs::read_to_string(&csv).unwrap();
     eprintln!("{text}");
-    let mut lines = text.lines();
-    let header = csv_fields(lines.next().unwrap());
-    let col = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"));
-    let rows: HashMap<String, Vec<String>> = lines
-        .map(csv_fields)
+    let table = Table::parse(&text);
+    let col = |name: &str| table.col(name);
+    let rows: HashMap<String, Vec<String>> = table
+        .rows
+        .iter()
         .map(|f| {
-            assert_eq!(f.len(), header.len(), "{f:?}");
             let name = Path::new(&f[col("file")]).file_name().unwrap().to_string_lossy().into_owned();
-            (name, f)
+            (name, f.clone())
         })
         .collect();
     assert_eq!(rows.len(), 4, "{:?}", rows.keys().collect::<Vec<_>>());
@@ -294,14 +260,10 @@ fn poor_maps_mark_the_shape_row_and_exit_3() {
     assert_eq!(out.status.code(), Some(3), "{err}");
     assert!(err.contains("1 of 2 meshes have a poor map") && err.contains("--allow-poor-map"), "{err}");
     let text = std::fs::read_to_string(&csv).unwrap();
-    let mut lines = text.lines();
-    let header = csv_fields(lines.next().unwrap());
-    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
-    let rows: Vec<Vec<String>> = lines.map(csv_fields).collect();
-    assert_eq!(rows.len(), 2, "{text}");
-    let quality = |file: &str| rows.iter().find(|r| r[col("file")].ends_with(file)).map(|r| r[col("quality")].clone()).unwrap();
-    assert_eq!(quality("bunny_x300.ply"), "poor", "{text}");
-    assert_eq!(quality("helmet.obj.gz"), "good", "{text}");
+    let table = Table::parse(&text);
+    assert_eq!(table.rows.len(), 2, "{text}");
+    assert_eq!(table.get("bunny_x300.ply", "quality"), "poor", "{text}");
+    assert_eq!(table.get("helmet.obj.gz", "quality"), "good", "{text}");
     let allowed = capmesh().args(["shape", "--quiet", "--resume", "--allow-poor-map"]).arg(&cohort).arg("--csv").arg(&csv).output().unwrap();
     assert!(allowed.status.success(), "{}", String::from_utf8_lossy(&allowed.stderr));
     let again = capmesh().args(["shape", "--quiet", "--resume"]).arg(&cohort).arg("--csv").arg(&csv).output().unwrap();

@@ -172,7 +172,7 @@ fn plain_centroid_map_of_a_punctured_surface_stays_area_preserving() {
     use capmesh::refine::Smoothing;
     let name = "closed_brain12k_choi.obj.gz";
     let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
-    let options = ParamOptions { smoothing: Smoothing::Fixed(0.0), area_refinement: 0, puncture_end: PunctureEnd::Bottom, ..Default::default() };
+    let options = ParamOptions::default().with_smoothing(Smoothing::Fixed(0.0)).with_area_refinement(0).with_puncture_end(PunctureEnd::Bottom);
     let map = parameterize(&mesh, &options, &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"));
     let r = &map.report;
     eprintln!("{name} plain: d_area {:.4}, untangle {:?}", r.area_distortion.mean_abs, r.untangle);
@@ -183,7 +183,7 @@ fn plain_centroid_map_of_a_punctured_surface_stays_area_preserving() {
 }
 
 /// A smoothed centroid map of a punctured surface: the few vertices that span the outer half
-/// of the disk near the puncture are left at their centroids (cap::regularize::PUNCTURE_HELD_RINGS).
+/// of the disk near the puncture are left at their centroids (refine::smoothing::PUNCTURE_HELD_RINGS).
 /// Smoothing them folded faces there that the repair could only undo by squeezing the whole
 /// map (this bumpy 41k ellipsoid at kappa = 3: mean |d_area| 0.59 before, 0.006 with them held).
 #[test]
@@ -195,7 +195,7 @@ fn smoothing_leaves_the_puncture_neighbourhood_alone() {
         let r = 1.0 + 0.08 * (5.0 * p[0]).sin() * (4.0 * p[1]).sin() * (3.0 * p[2]).sin();
         *p = [r * p[0], 0.7 * r * p[1], 1.4 * r * p[2]];
     }
-    let options = ParamOptions { smoothing: Smoothing::Fixed(3.0), puncture_end: PunctureEnd::Bottom, ..Default::default() };
+    let options = ParamOptions::default().with_smoothing(Smoothing::Fixed(3.0)).with_puncture_end(PunctureEnd::Bottom);
     let map = parameterize(&mesh, &options, &NoProgress).unwrap_or_else(|e| panic!("ellipsoid: {e}"));
     let r = &map.report;
     eprintln!("bumpy ellipsoid kappa 3: d_area {:.4}, untangle {:?}", r.area_distortion.mean_abs, r.untangle);
@@ -210,7 +210,7 @@ fn smoothing_leaves_the_puncture_neighbourhood_alone() {
 fn logarithmic_newton_steps_save_iterations_and_keep_the_map() {
     use capmesh::param::PunctureEnd;
     let mesh = read_mesh(&data("closed_lung_rml_chaste.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
-    let options = ParamOptions { puncture_end: PunctureEnd::Bottom, ..ParamOptions::default() };
+    let options = ParamOptions::default().with_puncture_end(PunctureEnd::Bottom);
     let mut plain = options.clone();
     plain.transport.log_step_error = f64::INFINITY;
     let (a, b) = (parameterize(&mesh, &options, &NoProgress).unwrap(), parameterize(&mesh, &plain, &NoProgress).unwrap());
@@ -234,7 +234,7 @@ fn best_puncture_end_finishes_the_better_searched_end() {
     use capmesh::param::PunctureEnd;
     let mesh = read_mesh(&data("closed_bunny_npm.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
     let run = |end: PunctureEnd, domain: Domain| {
-        let options = ParamOptions { puncture_end: end, ..ParamOptions::default() }.with_domain(domain);
+        let options = ParamOptions::default().with_puncture_end(end).with_domain(domain);
         parameterize(&mesh, &options, &NoProgress).unwrap_or_else(|e| panic!("{end:?}: {e}")).report
     };
     let (best, bottom, top) = (run(PunctureEnd::Best, Domain::Adaptive), run(PunctureEnd::Bottom, Domain::Adaptive), run(PunctureEnd::Top, Domain::Adaptive));

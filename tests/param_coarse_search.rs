@@ -16,7 +16,7 @@ use capmesh::progress::NoProgress;
 /// there the coarse search must still save at least a quarter of them.
 fn compare(name: &str, z_tolerance: f64) {
     let mesh = read_mesh(&data(name)).unwrap_or_else(|e| panic!("{e}"));
-    let full_options = ParamOptions { search_sites: 0, ..ParamOptions::default() };
+    let full_options = ParamOptions::default().with_search_sites(0);
     let full = parameterize(&mesh, &full_options, &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}")).report;
     let coarse = parameterize(&mesh, &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}")).report;
     eprintln!(

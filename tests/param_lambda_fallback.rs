@@ -69,7 +69,7 @@ fn a_stalled_transport_is_retried_with_a_larger_lambda() {
     let first = &map.report.lambda_fallbacks[0];
     assert!(first.mean_abs_area_distortion.is_none() && first.reason.contains("stalled"), "{first:?}");
     // Without fallbacks the first failure is the answer.
-    let options = ParamOptions { closed_lambda_fallbacks: Vec::new(), ..Default::default() };
+    let options = ParamOptions::default().with_closed_lambda_fallbacks(Vec::new());
     match parameterize(&mesh, &options, &NoProgress) {
         Err(Error::Transport(OmtError::Stalled { .. })) => {}
         Err(e) => panic!("bunny x10 without fallbacks: unexpected error {e}"),

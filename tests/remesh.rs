@@ -16,7 +16,7 @@ fn check(name: &str, max_relative_to_input: f64) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name);
     let mesh = read_mesh(&path).unwrap();
     let target = 5000;
-    let (out, rep) = remesh(&mesh, &RemeshOptions { grid: CapGrid::Uniform { faces: target }, ..Default::default() }, &NoProgress)
+    let (out, rep) = remesh(&mesh, &RemeshOptions::default().with_grid(CapGrid::Uniform { faces: target }), &NoProgress)
         .unwrap_or_else(|e| panic!("{name}: {e}"));
     let (input_kind, _) = validate(&mesh).unwrap();
     let (kind, _) = validate(&out).unwrap_or_else(|e| panic!("{name}: remeshed mesh invalid: {e}"));
@@ -104,7 +104,7 @@ fn closed_bird_skull() {
 fn closed_lat_long_is_watertight() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/closed_bunny_npm.obj.gz");
     let mesh = read_mesh(&path).unwrap();
-    let (out, _) = remesh(&mesh, &RemeshOptions { grid: CapGrid::LatLong { rings: 40, sectors: 80 }, ..Default::default() }, &NoProgress).unwrap();
+    let (out, _) = remesh(&mesh, &RemeshOptions::default().with_grid(CapGrid::LatLong { rings: 40, sectors: 80 }), &NoProgress).unwrap();
     assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
     // The bottom disk is scaled onto the punctured quad: no face collapses onto its sides.
     let zero = capmesh::mesh::repair::zero_area_faces(&out, capmesh::mesh::repair::DEFAULT_ZERO_AREA_REL_TOL);
@@ -116,7 +116,7 @@ fn lat_long_grid_has_rings_times_sectors_layout() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/open_meg_helmet_babysquid_mne.obj.gz");
     let mesh = read_mesh(&path).unwrap();
     let (rings, sectors) = (12, 24);
-    let (out, _) = remesh(&mesh, &RemeshOptions { grid: CapGrid::LatLong { rings, sectors }, ..Default::default() }, &NoProgress).unwrap();
+    let (out, _) = remesh(&mesh, &RemeshOptions::default().with_grid(CapGrid::LatLong { rings, sectors }), &NoProgress).unwrap();
     // A pole, then `rings` rings of `sectors` vertices; a fan of `sectors` faces at the pole and
     // two faces per quad.
     assert_eq!(out.n_vertices(), 1 + rings * sectors);
@@ -144,7 +144,7 @@ fn coarse_inputs_remesh_without_zero_area_faces() {
     ];
     for (name, mesh) in cases {
         for grid in [CapGrid::Uniform { faces: 5000 }, CapGrid::LatLong { rings: 40, sectors: 64 }] {
-            let (out, rep) = remesh(&mesh, &RemeshOptions { grid, ..Default::default() }, &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let (out, rep) = remesh(&mesh, &RemeshOptions::default().with_grid(grid), &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"));
             let (input_kind, _) = validate(&mesh).unwrap();
             let (kind, _) = validate(&out).unwrap_or_else(|e| panic!("{name} {grid:?}: remeshed mesh invalid: {e}"));
             assert_eq!(kind, input_kind, "{name} {grid:?}");

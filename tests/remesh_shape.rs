@@ -16,7 +16,7 @@ fn load(name: &str) -> TriMesh {
 }
 
 fn run(mesh: &TriMesh, optimize: Optimize) -> (TriMesh, capmesh::remesh::RemeshReport) {
-    let options = RemeshOptions { grid: CapGrid::Uniform { faces: 5000 }, optimize, ..Default::default() };
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 }).with_optimize(optimize);
     remesh(mesh, &options, &NoProgress).unwrap()
 }
 
@@ -166,7 +166,7 @@ fn square_sheet_keeps_its_corners() {
         }
     }
     let mesh = TriMesh::new(vertices, faces);
-    let options = RemeshOptions { grid: CapGrid::Uniform { faces: 2000 }, ..Default::default() };
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 2000 });
     let (out, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
     assert_eq!(rep.shape.corners_kept, 4, "{:?}", rep.shape);
     for corner in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] {
@@ -206,7 +206,7 @@ fn square_sheet_keeps_its_corners() {
 fn resampling_keeps_the_invariants() {
     let name = "open_lv_endo_rabbit_chaste.obj.gz";
     let mesh = load(name);
-    let mut options = RemeshOptions { grid: CapGrid::Uniform { faces: 5000 }, ..Default::default() };
+    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
     assert!(options.shape.resample, "splits and collapses are the default");
     let (out, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
     options.shape = options.shape.with_resample(false);
@@ -230,7 +230,7 @@ fn resampling_keeps_the_invariants() {
 #[test]
 fn curvature_sizing_follows_the_surface_closer() {
     let mesh = load("open_face_choi.obj.gz");
-    let mut options = RemeshOptions { grid: CapGrid::Uniform { faces: 5000 }, ..Default::default() };
+    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
     let (_, uniform) = remesh(&mesh, &options, &NoProgress).unwrap();
     options.shape = options.shape.with_sizing("curvature".parse().unwrap());
     let (sized, rep) = remesh(&mesh, &options, &NoProgress).unwrap();

@@ -7,12 +7,9 @@
 mod common;
 
 use capmesh::harmonics::{basis_index, BasisKind, CapBoundary, HarmonicFit};
+use common::cli::{capmesh, harmonics, HarmonicsFiles};
+use common::csv::Table;
 use common::{data, TempDir};
-use std::process::Command;
-
-fn capmesh() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_capmesh"))
-}
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
@@ -31,21 +28,9 @@ fn scha_keeps_the_face_boundary_at_order_15() {
     const ORDER: usize = 15;
     let dir = TempDir::new("scha-cli-face");
     let input = data("open_face_choi.obj.gz");
-    let (out, coefficients, report, cap, resampled) =
-        (dir.join("face.ply"), dir.join("c.json"), dir.join("r.json"), dir.join("cap.obj"), dir.join("grid.ply"));
-    let run = capmesh()
-        .args(["harmonics", "--quiet", "--basis", "scha", "--order", &ORDER.to_string()])
-        .arg(&input)
-        .arg("-o")
-        .arg(&out)
-        .arg("--coefficients")
-        .arg(&coefficients)
-        .arg("--report")
-        .arg(&report)
-        .arg("--cap-mesh")
-        .arg(&cap)
-        .output()
-        .unwrap();
+    let files = HarmonicsFiles::in_dir(&dir, "face.ply");
+    let (out, coefficients, report, cap, resampled) = (&files.output, &files.coefficients, &files.report, &files.cap_mesh, dir.join("grid.ply"));
+    let run = harmonics(&input, &["--basis", "scha", "--order", &ORDER.to_string()], &files);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let stdout = String::from_utf8_lossy(&run.stdout);
     eprintln!("{stdout}");
@@ -154,12 +139,8 @@ fn shape_compares_groups_with_welch() {
     assert!(stdout.contains("Welch's t-test open vs closed"), "{stdout}");
 
     // The summary's means are those of the CSV's aspect ratios.
-    let table = std::fs::read_to_string(&csv).unwrap();
-    let column = table.lines().next().unwrap().split(',').position(|c| c == "aspect_ratio").unwrap();
-    let ratio = |name: &str| -> f64 {
-        let line = table.lines().find(|l| l.contains(name)).unwrap();
-        line.split(',').nth(column).unwrap().parse().unwrap()
-    };
+    let table = Table::read(&csv);
+    let ratio = |name: &str| -> f64 { table.get(name, "aspect_ratio").parse().unwrap() };
     let summary: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.join("shape.groups.json")).unwrap()).unwrap();
     let open_mean = (ratio(meshes[0]) + ratio(meshes[1])) / 2.0;
     assert_eq!(summary["groups"][0]["group"], "open");

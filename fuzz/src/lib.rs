@@ -93,7 +93,7 @@ pub fn decode_mesh(data: &[u8]) -> TriMesh {
 /// Parameterize and remesh the decoded mesh with small budgets; successes must be sane.
 pub fn check_pipeline(data: &[u8]) {
     let mesh = decode_mesh(data);
-    let param = ParamOptions { max_search_evaluations: 6, area_refinement: 5, ..ParamOptions::default() };
+    let param = ParamOptions::default().with_max_search_evaluations(6).with_area_refinement(5);
     if let Ok(map) = parameterize(&mesh, &param, &NoProgress) {
         assert_eq!(map.cap.len(), mesh.vertices.len());
         let used = used_vertices(&mesh);
@@ -103,7 +103,7 @@ pub fn check_pipeline(data: &[u8]) {
                 assert!((r - 1.0).abs() < 1e-9, "vertex {v} at {p:?} is not on the unit sphere");
             }
         }
-        let options = RemeshOptions { grid: CapGrid::Uniform { faces: 60 }, param, area_equalization: 3, ..Default::default() };
+        let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 60 }).with_param(param).with_area_equalization(3);
         if let Ok((out, _)) = remesh(&mesh, &options, &NoProgress) {
             check_indices(&out);
             assert!(out.vertices.iter().all(|p| p.iter().all(|x| x.is_finite())), "non-finite remeshed vertex");

@@ -65,7 +65,7 @@ pub fn param(domain: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Param
 
 /// [`RemeshOptions`] of the grid and keyword arguments.
 pub fn remesh(grid: capmesh::CapGrid, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<RemeshOptions> {
-    let mut options = RemeshOptions { grid, ..Default::default() };
+    let mut options = RemeshOptions::default().with_grid(grid);
     let Some(kwargs) = kwargs else { return Ok(options) };
     for (key, value) in kwargs.iter() {
         let name: String = key.extract()?;

@@ -50,6 +50,7 @@ pub enum InverseMapError {
 
 /// Options of [`CapMap::inverse_with`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct InverseOptions {
     /// How far (in the cap's units: the unit sphere) a point may lie off the cap and still be
     /// located. Default `1e-9`.

@@ -4,8 +4,8 @@
 //! (Sec. 4.2). The parameterization that
 //! produces a [`CapMap`] is [`crate::param`].
 
-pub mod brent;
-pub mod domain;
+pub(crate) mod brent;
+pub(crate) mod domain;
 mod inverse;
 mod map;
 pub mod stereographic;

@@ -27,7 +27,7 @@ mod histogram;
 mod index;
 mod plot;
 mod radius_curve;
-pub mod raster;
+pub(crate) mod raster;
 mod remesh_quality;
 mod shaded;
 mod text;
@@ -53,6 +53,7 @@ pub const DEFAULT_BINS: usize = 50;
 
 /// Options of the figures.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct FigureOptions {
     /// Side of one of the three shaded views in pixels (default [`DEFAULT_VIEW_SIZE`], 300;
     /// 16 to 4096): a rendering is `3 * view_size` wide.

@@ -3,10 +3,10 @@
 
 pub mod beltrami;
 pub mod closed;
-pub mod disk_conformal;
+pub(crate) mod disk_conformal;
 pub mod harmonic;
-pub mod mobius;
-pub mod puncture;
+pub(crate) mod mobius;
+pub(crate) mod puncture;
 pub mod stretch_energy;
 
 pub use disk_conformal::{disk_conformal_map, DiskConformalOptions, DiskConformalReport};

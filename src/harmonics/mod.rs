@@ -35,19 +35,19 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-pub mod any_basis;
+pub(crate) mod any_basis;
 pub mod basis;
 pub mod cap_legendre;
 pub mod cohort;
-pub mod error;
+pub(crate) mod error;
 pub mod fit;
 pub mod legendre;
 pub mod pipeline;
-pub mod kind;
-pub mod quadrature;
-pub mod resample;
+pub(crate) mod kind;
+pub(crate) mod quadrature;
+pub(crate) mod resample;
 pub mod scha;
-pub mod shape;
+pub(crate) mod shape;
 
 pub use basis::{basis_degree, basis_index, basis_len, CapBasis};
 pub use error::HarmonicsError;

@@ -56,6 +56,7 @@ pub const DEFAULT_ORDER: usize = 10;
 
 /// Options of [`analyze`].
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct HarmonicsOptions {
     /// Largest order `N` of the fit: `(N + 1)^2` basis functions. Default [`DEFAULT_ORDER`]
     /// (10). At most 500, and the mesh needs at least `(N + 1)^2` vertices.

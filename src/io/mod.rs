@@ -18,7 +18,7 @@
 
 pub mod atomic;
 mod attribute;
-pub mod error;
+pub(crate) mod error;
 mod freesurfer;
 mod gifti;
 mod obj;
@@ -273,6 +273,7 @@ fn parse(path: &Path, bytes: &[u8], format: Format) -> Result<TriMesh, ReadError
 /// Options of the writers whose format has variants. Defaults: binary PLY, and
 /// [`GiftiOptions::default()`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
 pub struct WriteOptions {
     /// Write PLY as ASCII instead of binary little endian.
     pub ply_ascii: bool,

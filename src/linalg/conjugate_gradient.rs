@@ -5,7 +5,7 @@
 //!
 //! Used where a system is solved once per matrix and a good first guess is at hand, so that
 //! a sparse Cholesky factorization (ordering, symbolic and numeric) costs more than a few
-//! dozen matrix products: the smoothing candidates of [`crate::refine::regularize`].
+//! dozen matrix products: the smoothing candidates of [`crate::refine::smoothing`].
 
 /// How a solve ended.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -2,7 +2,7 @@
 //! characteristic), geometry (areas, angles), validation and small repairs, and procedural
 //! shapes used by tests and benchmarks.
 
-pub mod error;
+pub(crate) mod error;
 pub(crate) mod fasthash;
 pub mod geometry;
 pub mod repair;

@@ -3,12 +3,12 @@
 
 pub mod angles;
 pub mod closest;
-pub mod distortion;
+pub(crate) mod distortion;
 pub mod hausdorff;
-pub mod remeshing;
-pub mod sampling;
-pub mod self_intersection;
-pub mod valence;
+pub(crate) mod remeshing;
+pub(crate) mod sampling;
+pub(crate) mod self_intersection;
+pub(crate) mod valence;
 
 pub use distortion::{angle_distortion, area_distortion, beltrami_abs, conformal_energy, conformal_energy_surface_weighted, Stats};
 pub use remeshing::{face_area_deviation, remesh_metrics, RemeshMetrics};

@@ -5,8 +5,8 @@
 
 pub mod cells;
 pub mod coarse_level;
-pub mod density;
-pub mod newton;
+pub(crate) mod density;
+pub(crate) mod newton;
 pub mod options;
 pub mod planar_transport;
 pub mod triangulation;

@@ -1,4 +1,4 @@
-//! The second half of a parameterization: the transport map at `r*`, its regularisation and
+//! The second half of a parameterization: the transport map at `r*`, its smoothing and
 //! fold repair, the area refinement, and the report.
 
 use super::options::ParamOptions;
@@ -18,7 +18,7 @@ use crate::omt::planar_transport::PlanarTransport;
 use crate::omt::OmtError;
 use crate::progress::{self, Progress, Stage};
 use crate::refine::area_refine::{refine_areas, RefineOptions};
-use crate::refine::regularize::{regularise, PUNCTURE_HELD_RINGS};
+use crate::refine::smoothing::{smooth_centroid_map, PUNCTURE_HELD_RINGS};
 use std::time::Instant;
 
 /// [`super::parameterize`] of the prepared `mesh` with the puncture end fixed by
@@ -29,7 +29,7 @@ pub(crate) fn parameterize_once(mesh: &TriMesh, prepared: &Prepared, options: &P
 }
 
 /// The second half of [`parameterize_once`]: the transport map at the searched radius (unless
-/// the search solved it), its regularisation and fold repair, the area refinement and the
+/// the search solved it), its smoothing and fold repair, the area refinement and the
 /// report.
 pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
     let Searched {
@@ -77,10 +77,10 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
     let t_reg = Instant::now();
     let cot = cotangent_weights(&work.vertices, &faces);
     let held = if kind == SurfaceKind::ClosedSphere { within_rings(&on_boundary, &faces, PUNCTURE_HELD_RINGS) } else { on_boundary.clone() };
-    let chosen = regularise(&transported, &work.vertices, &faces, &cot, &on_boundary, &held, radius, options.smoothing, &to_cap).map_err(OmtError::Linear)?;
+    let chosen = smooth_centroid_map(&transported, &work.vertices, &faces, &cot, &on_boundary, &held, radius, options.smoothing, &to_cap).map_err(OmtError::Linear)?;
     let (kappa, mut plane, untangle_report, trials) = (chosen.kappa, chosen.positions, chosen.untangle, chosen.trials);
     let lift_one = |q: [f64; 2]| if options.domain == Domain::Disk { [q[0], q[1], 0.0] } else { inverse_stereographic(q) };
-    let regularise_seconds = t_reg.elapsed().as_secs_f64();
+    let smoothing_seconds = t_reg.elapsed().as_secs_f64();
     progress::check(progress, Stage::Project, 0.0, "area refinement")?;
     let t_refine = Instant::now();
     let refinement = refine_areas(&mut plane, &work.vertices, &faces, &on_boundary, &lift_one, RefineOptions { sweeps: options.area_refinement, ..Default::default() });
@@ -122,7 +122,7 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         seconds: start.elapsed().as_secs_f64(),
         flatten_seconds,
         transport_seconds,
-        regularise_seconds,
+        smoothing_seconds,
         refine_seconds,
     };
     // Back to the input's vertex numbering; vertices no face uses go to the origin.

@@ -10,17 +10,17 @@
 //!
 //! The steps, one file each: [`options`], `prepare` (check, weld and classify the mesh
 //! once), `search` (initial disk map and radius search), `finish` (transport at `r*`,
-//! regularisation, fold repair, area refinement, report), `puncture_end` (both ends of a
+//! smoothing, fold repair, area refinement, report), `puncture_end` (both ends of a
 //! closed surface) and [`lambda_fallback`] (a larger `lambda` when the transport fails);
 //! [`report`] holds what they measure. The files import downwards only: this one calls
 //! the fallbacks and the puncture ends, which call `search` and `finish`.
 
 pub(crate) mod finish;
-pub mod lambda_fallback;
-pub mod options;
+pub(crate) mod lambda_fallback;
+pub(crate) mod options;
 pub(crate) mod prepare;
 pub(crate) mod puncture_end;
-pub mod report;
+pub(crate) mod report;
 pub(crate) mod search;
 
 pub use crate::cap::CapMap;

@@ -18,14 +18,16 @@ pub const MASS_TOLERANCE: f64 = 1e-5;
 /// Relative L1 mass error at which the final full-resolution transport stops (the map at
 /// `r*` after a coarse radius search, and the fixed domains' maps): a 0.1% mass error, the
 /// level below which the area refinement stops too ([`crate::refine::area_refine::GOOD_ENOUGH`]),
-/// since the regularisation and the face-level refinement that follow move the vertices far
+/// since the smoothing and the face-level refinement that follow move the vertices far
 /// more. Newton converges quadratically there, so this saves the last step whenever the one
 /// before it lands below `1e-3`, with mean `|d_area|` and `|d_angle|` within 1% of
 /// [`MASS_TOLERANCE`]'s; at `5e-3` the 100k ellipsoid's mean `|d_area|` rose 11%.
 pub const TRANSPORT_TOLERANCE: f64 = 1e-3;
 
-/// Options of [`super::parameterize`].
+/// Options of [`super::parameterize`]. Build them from [`ParamOptions::default`] with the
+/// `with_*` setters (or by setting fields): new options may be added without notice.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct ParamOptions {
     /// Target domain. Default [`Domain::Adaptive`].
     pub domain: Domain,
@@ -64,7 +66,7 @@ pub struct ParamOptions {
     /// ([`crate::flatten::stretch_energy::StretchOptions::factored_iterations`]). Default
     /// [`DEFAULT_OPEN_FACTORED_ITERATIONS`].
     pub open_factored_iterations: usize,
-    /// Regularisation of the final centroid map (see [`crate::refine::regularize`]);
+    /// Smoothing of the final centroid map (see [`crate::refine::smoothing`]);
     /// `Smoothing::Fixed(0.0)` is the paper's plain centroid map. Default [`Smoothing::Auto`].
     pub smoothing: Smoothing,
     /// Closed-surface flattening options (lambda, puncture, stretch energy).
@@ -112,6 +114,96 @@ impl ParamOptions {
     /// Set the domain.
     pub fn with_domain(mut self, d: Domain) -> Self {
         self.domain = d;
+        self
+    }
+
+    /// Set the absolute tolerance on `Z*` of the radius search.
+    pub fn with_z_tolerance(mut self, z_tolerance: f64) -> Self {
+        self.z_tolerance = z_tolerance;
+        self
+    }
+
+    /// Set the most transport solves of the radius search.
+    pub fn with_max_search_evaluations(mut self, max_search_evaluations: usize) -> Self {
+        self.max_search_evaluations = max_search_evaluations;
+        self
+    }
+
+    /// Set the transport solver's options (their tolerance is the final map's).
+    pub fn with_transport(mut self, transport: OtOptions) -> Self {
+        self.transport = transport;
+        self
+    }
+
+    /// Set the relative mass tolerance of the radius search's transport solves.
+    pub fn with_search_tolerance(mut self, search_tolerance: f64) -> Self {
+        self.search_tolerance = search_tolerance;
+        self
+    }
+
+    /// Set the transport sites of the radius search (0: search at full resolution).
+    pub fn with_search_sites(mut self, search_sites: usize) -> Self {
+        self.search_sites = search_sites;
+        self
+    }
+
+    /// Set the disk conformal map's options.
+    pub fn with_flatten(mut self, flatten: DiskConformalOptions) -> Self {
+        self.flatten = flatten;
+        self
+    }
+
+    /// Set the initial map of open surfaces.
+    pub fn with_open_initial(mut self, open_initial: OpenInitialMap) -> Self {
+        self.open_initial = open_initial;
+        self
+    }
+
+    /// Set `lambda` of the composite initial map of open surfaces.
+    pub fn with_open_lambda(mut self, open_lambda: f64) -> Self {
+        self.open_lambda = open_lambda;
+        self
+    }
+
+    /// Set the stretch-energy iterations of open surfaces that factor their own matrix.
+    pub fn with_open_factored_iterations(mut self, open_factored_iterations: usize) -> Self {
+        self.open_factored_iterations = open_factored_iterations;
+        self
+    }
+
+    /// Set the smoothing of the final centroid map.
+    pub fn with_smoothing(mut self, smoothing: Smoothing) -> Self {
+        self.smoothing = smoothing;
+        self
+    }
+
+    /// Set the closed-surface flattening's options.
+    pub fn with_closed(mut self, closed: ClosedFlattenOptions) -> Self {
+        self.closed = closed;
+        self
+    }
+
+    /// Set the sweeps of the face-level area refinement (0: the paper's map).
+    pub fn with_area_refinement(mut self, area_refinement: usize) -> Self {
+        self.area_refinement = area_refinement;
+        self
+    }
+
+    /// Set which end of a closed surface is punctured.
+    pub fn with_puncture_end(mut self, puncture_end: PunctureEnd) -> Self {
+        self.puncture_end = puncture_end;
+        self
+    }
+
+    /// Set the weld tolerance, relative to the bounding-box diagonal.
+    pub fn with_weld_tolerance(mut self, weld_tolerance: f64) -> Self {
+        self.weld_tolerance = weld_tolerance;
+        self
+    }
+
+    /// Set the larger `lambda` values tried on closed surfaces (empty: none).
+    pub fn with_closed_lambda_fallbacks(mut self, closed_lambda_fallbacks: Vec<f64>) -> Self {
+        self.closed_lambda_fallbacks = closed_lambda_fallbacks;
         self
     }
 }

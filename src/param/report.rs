@@ -111,9 +111,9 @@ pub struct ParamReport {
     pub conformal_energy: f64,
     /// Faces with non-positive orientation in the final map.
     pub flipped_faces: usize,
-    /// Regularisation strength of the final centroid map (0: the paper's plain map).
+    /// Smoothing strength of the final centroid map (0: the paper's plain map).
     pub smoothing_kappa: f64,
-    /// Every regularisation tried, with its measured area distortion.
+    /// Every smoothing strength tried, with its measured area distortion.
     pub smoothing_trials: Vec<SmoothingTrial>,
     /// The repair of folded faces after transport (see [`crate::refine::untangle`]).
     pub untangle: UntangleReport,
@@ -151,8 +151,10 @@ pub struct ParamReport {
     pub flatten_seconds: f64,
     /// Seconds spent in transport solves (radius search included).
     pub transport_seconds: f64,
-    /// Seconds spent in the regularisation trials and fold repair.
-    pub regularise_seconds: f64,
+    /// Seconds spent in the smoothing trials and fold repair (JSON: `regularise_seconds`, its
+    /// name before the concept had one name).
+    #[serde(rename = "regularise_seconds")]
+    pub smoothing_seconds: f64,
     /// Seconds spent in the face-level area refinement.
     pub refine_seconds: f64,
 }

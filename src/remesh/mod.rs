@@ -1,13 +1,13 @@
 //! Remeshing through the cap (paper Sec. 4.2): parameterize, build a uniform or
 //! latitude/longitude mesh of the cap `Z >= Z*`, pull it back onto the surface.
 
-pub mod equalize;
-pub mod grid;
-pub mod locate;
+pub(crate) mod equalize;
+pub(crate) mod grid;
+pub(crate) mod locate;
 pub mod pullback;
 pub mod shape;
-pub mod sizing;
-pub mod transfer;
+pub(crate) mod sizing;
+pub(crate) mod transfer;
 
 use crate::refine::area_refine::AreaRefineReport;
 use crate::param::{parameterize, ParamOptions, ParamReport};
@@ -99,8 +99,10 @@ impl std::str::FromStr for Optimize {
     }
 }
 
-/// Options of [`remesh`].
+/// Options of [`remesh`]. Build them from [`RemeshOptions::default`] with the `with_*` setters
+/// (or by setting fields): new options may be added without notice.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct RemeshOptions {
     /// The cap mesh. Default uniform with 5000 faces.
     pub grid: CapGrid,
@@ -120,6 +122,38 @@ pub struct RemeshOptions {
 
 /// Sweeps of the area equalization by default.
 pub const DEFAULT_AREA_EQUALIZATION: usize = 30;
+
+impl RemeshOptions {
+    /// Set the cap mesh.
+    pub fn with_grid(mut self, grid: CapGrid) -> Self {
+        self.grid = grid;
+        self
+    }
+
+    /// Set the parameterization's options.
+    pub fn with_param(mut self, param: ParamOptions) -> Self {
+        self.param = param;
+        self
+    }
+
+    /// Set the sweeps of the area equalization of the pulled-back mesh.
+    pub fn with_area_equalization(mut self, area_equalization: usize) -> Self {
+        self.area_equalization = area_equalization;
+        self
+    }
+
+    /// Set what is optimised after the pull-back.
+    pub fn with_optimize(mut self, optimize: Optimize) -> Self {
+        self.optimize = optimize;
+        self
+    }
+
+    /// Set the shape stage's options.
+    pub fn with_shape(mut self, shape: shape::ShapeOptions) -> Self {
+        self.shape = shape;
+        self
+    }
+}
 
 impl Default for RemeshOptions {
     fn default() -> Self {

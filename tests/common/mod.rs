@@ -1,8 +1,12 @@
 //! Helpers shared by the integration tests (`mod common;` in each test file): the test
-//! meshes, temporary directories and a deterministic random number generator.
+//! meshes, temporary directories and a deterministic random number generator here; running
+//! the command line in `cli`, reading its CSV files in `csv`.
 
 // Each test binary uses some of these.
 #![allow(dead_code)]
+
+pub mod cli;
+pub mod csv;
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -1,4 +1,6 @@
-//! The `capmesh` command line: check, param, remesh, metrics, harmonics, shape.
+//! The `capmesh` command line: check, param, remesh, metrics, harmonics, shape. This file holds
+//! the argument definitions (clap) and the dispatch; each command with more than a few lines
+//! runs in its own `*_cmd.rs`.
 
 /// `println!` that never panics: when the reader of standard output has gone
 /// (`capmesh check mesh.obj | head -1`) the program ends quietly, like other command-line
@@ -19,20 +21,25 @@ mod harmonics_cmd;
 mod interrupt;
 mod map_args;
 mod outputs;
+mod param_cmd;
+mod poor_map;
+mod quality_table;
+mod remesh_cmd;
 mod shape_cmd;
 mod shape_csv;
 mod shape_groups;
 
 use basis_args::BasisArgs;
 use capmesh::cap::Domain;
-use capmesh::param::{parameterize, ParamOptions};
 use capmesh::io;
-use capmesh::remesh::{CapGrid, RemeshOptions};
 use capmesh::mesh;
 use clap::{Parser, Subcommand};
 use failure::Failure;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+pub(crate) use poor_map::{refuse_poor, warn_if_poor};
+pub(crate) use quality_table::print_quality;
 
 #[derive(Parser)]
 #[command(name = "capmesh", version, about = "Adaptive area-preserving parameterization onto a spherical cap, remeshing through it, and adaptive harmonics")]
@@ -282,68 +289,6 @@ pub(crate) fn refuse_overwrite(input: &Path, output: &Path) -> Result<(), String
     Ok(())
 }
 
-/// Mean |d_area| above which the map is reported as poor on stderr (the bundled meshes map
-/// at 0.008-0.13; a failed fold repair gives 0.4 and more); closed surfaces are mapped again
-/// with a larger lambda above it first.
-const POOR_AREA_DISTORTION: f64 = capmesh::param::POOR_MAP_AREA_DISTORTION;
-
-/// Say on stderr when a map is fold-free but far from area preserving, rather than let a poor
-/// result pass silently, and when a closed surface needed a larger `lambda` than asked.
-pub(crate) fn warn_if_poor(input: &std::path::Path, r: &capmesh::ParamReport) {
-    if let capmesh::param::FlattenReport::Closed(used) = &r.flatten {
-        for tried in &r.lambda_fallbacks {
-            eprintln!("warning: {}: not kept: lambda = {}: {}", input.display(), tried.lambda, tried.reason);
-        }
-        if !r.lambda_fallbacks.is_empty() {
-            eprintln!(
-                "warning: {}: mapped with lambda = {} (a less conformal initial map that squeezes the surface less; \
-                 report: lambda_fallbacks; --no-lambda-fallback keeps the first lambda's result)",
-                input.display(),
-                used.lambda
-            );
-        }
-    }
-    if r.domain == Domain::Adaptive && r.area_distortion.mean_abs > POOR_AREA_DISTORTION {
-        eprintln!(
-            "warning: {}: mean |d_area| = {:.3} is far from area preserving (fold repair moved a vertex by {:.0}% of the disk radius); \
-             try --puncture-end bottom or top, another --smoothing or --lambda, and check the report's untangle and smoothing_trials",
-            input.display(),
-            r.area_distortion.mean_abs,
-            100.0 * r.untangle.max_displacement
-        );
-    }
-}
-
-/// `Err(Failure::PoorMap)` for a poor map unless `allow` (`--allow-poor-map`).
-pub(crate) fn refuse_poor(input: &Path, r: &capmesh::ParamReport, allow: bool) -> Result<(), Failure> {
-    if r.quality == capmesh::MapQuality::Poor && !allow {
-        return Err(Failure::PoorMap(format!(
-            "{}: poor map (mean |d_area| = {:.3}, above {POOR_AREA_DISTORTION}; quality: poor in the report); \
-             the outputs are written; pass --allow-poor-map to accept it",
-            input.display(),
-            r.area_distortion.mean_abs
-        )));
-    }
-    Ok(())
-}
-
-fn print_quality(q: &capmesh::metrics::RemeshMetrics) -> Result<(), String> {
-    outln!("faces                      {}", q.faces);
-    outln!("d_face                     {:.6e}", q.d_face);
-    outln!("d_face_relative            {:.4}", q.d_face_relative);
-    outln!("d_surface_vertex           {:.6e} ({:.3e} of the diagonal)", q.d_surface_vertex, q.d_surface_vertex_relative);
-    outln!("d_surface_sampled          {:.6e} ({:.3e} of the diagonal)", q.d_surface_sampled, q.d_surface_sampled_relative);
-    outln!("min_angle_deg              {:.2}", q.min_angle_deg);
-    outln!("zero_area_faces            {}", q.zero_area_faces);
-    outln!("mean_min_angle_deg         {:.2}", q.mean_min_angle_deg);
-    outln!("faces_angle_below_30       {:.2}%", 100.0 * q.share_faces_angle_below_30);
-    outln!("max_angle_deg              {:.2}", q.max_angle_deg);
-    outln!("interior_valence_6         {:.2}%", 100.0 * q.share_interior_valence_6);
-    outln!("self_intersecting_faces    {} (input {})", q.self_intersecting_faces, q.self_intersecting_faces_input);
-    outln!("hausdorff_distance         {:.6e} ({:.3e} of the diagonal)", q.hausdorff_distance, q.hausdorff_distance_relative);
-    Ok(())
-}
-
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::Harmonics { input, order, output, coefficients, report, cap_mesh, domain, figures, allow_poor_map, basis, resample_faces } => {
@@ -368,105 +313,26 @@ fn run(cli: Cli) -> Result<(), Failure> {
             shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, basis, groups, quiet: cli.quiet })
         }
         Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, sizing, figures, map } => {
-            refuse_overwrite(&input, &output)?;
-            if let Some(r) = &report {
-                refuse_overwrite(&input, r)?;
-                outputs::refuse_duplicates(&[&output, r])?;
-            }
-            let t_read = std::time::Instant::now();
-            let m = read(&input)?;
-            let attributes = attributes_arg::read_all(&attribute, &input, &m, &output)?;
-            let read_seconds = t_read.elapsed().as_secs_f64();
-            let bar = cli_progress::Bar::new(cli.quiet);
-            let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-            let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing);
-            let mut options = RemeshOptions { grid, area_equalization, optimize, shape, ..Default::default() };
-            map.apply(&mut options.param);
-            let (out, rep, points) = capmesh::remesh_located(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
-            bar.finish();
-            let t_write = std::time::Instant::now();
-            let carried: Vec<_> = attributes.iter().map(|a| capmesh::carry_attribute(&m, &points, a)).collect();
-            let mut staged = if carried.is_empty() || io::Format::from_path(&output) != Some(io::Format::Ply) {
-                vec![outputs::stage_mesh(&output, &out)?]
-            } else {
-                vec![io::stage_mesh_with_properties(&output, &out, &attributes_arg::ply_properties(&carried), &Default::default())?]
-            };
-            if !carried.is_empty() && io::Format::from_path(&output) == Some(io::Format::Gifti) {
-                for (path, file) in attributes_arg::stage_gifti(&output, &carried)? {
-                    refuse_overwrite(&input, &path)?;
-                    staged.push(file);
-                }
-            }
-            let write_seconds = t_write.elapsed().as_secs_f64();
-            outln!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
-            warn_if_poor(&input, &rep.param);
-            if rep.quality.zero_area_faces > 0 {
-                eprintln!(
-                    "warning: {}: the remesh has {} zero-area faces; check the input with `capmesh check`, try fewer faces, \
-                     or remove them with an edge collapse",
-                    input.display(),
-                    rep.quality.zero_area_faces
-                );
-            }
-            print_quality(&rep.quality)?;
-            if let Some(path) = report {
-                #[derive(serde::Serialize)]
-                struct Flat<'a> {
-                    faces: usize,
-                    d_face: f64,
-                    d_face_relative: f64,
-                    d_surface_vertex: f64,
-                    d_surface_sampled: f64,
-                    d_surface_vertex_relative: f64,
-                    d_surface_sampled_relative: f64,
-                    min_angle_deg: f64,
-                    zero_area_faces: usize,
-                    seconds: f64,
-                    read_seconds: f64,
-                    pullback_seconds: f64,
-                    shape_seconds: f64,
-                    equalize_seconds: f64,
-                    metrics_seconds: f64,
-                    write_seconds: f64,
-                    quality: capmesh::MapQuality,
-                    optimize: capmesh::remesh::Optimize,
-                    shape: capmesh::remesh::shape::ShapeReport,
-                    area_equalization: capmesh::refine::area_refine::AreaRefineReport,
-                    parameterization: &'a capmesh::ParamReport,
-                }
-                let q = &rep.quality;
-                staged.push(outputs::stage_json(
-                    &path,
-                    &Flat {
-                        faces: q.faces,
-                        d_face: q.d_face,
-                        d_face_relative: q.d_face_relative,
-                        d_surface_vertex: q.d_surface_vertex,
-                        d_surface_sampled: q.d_surface_sampled,
-                        d_surface_vertex_relative: q.d_surface_vertex_relative,
-                        d_surface_sampled_relative: q.d_surface_sampled_relative,
-                        min_angle_deg: q.min_angle_deg,
-                        zero_area_faces: q.zero_area_faces,
-                        seconds: rep.seconds,
-                        read_seconds,
-                        pullback_seconds: rep.pullback_seconds,
-                        shape_seconds: rep.shape_seconds,
-                        equalize_seconds: rep.equalize_seconds,
-                        metrics_seconds: rep.metrics_seconds,
-                        write_seconds,
-                        quality: rep.param.quality,
-                        optimize: rep.optimize,
-                        shape: rep.shape,
-                        area_equalization: rep.area_equalization,
-                        parameterization: &rep.param,
-                    },
-                )?);
-            }
-            outputs::commit(staged, || format!("remesh of {} stopped while writing", input.display()))?;
-            if let Some(dir) = figures {
-                figures_arg::done(capmesh::figures::remesh_figures(&dir, &figures_arg::name(&input), &m, &out, &rep, &Default::default()))?;
-            }
-            refuse_poor(&input, &rep.param, map.allow_poor_map)
+            remesh_cmd::run(remesh_cmd::RemeshArgs {
+                input,
+                output,
+                attribute,
+                faces,
+                lat_long,
+                rings,
+                sectors,
+                report,
+                area_equalization,
+                optimize,
+                relax_iterations,
+                polish_iterations,
+                shape_weight,
+                no_resample,
+                sizing,
+                figures,
+                map,
+                quiet: cli.quiet,
+            })
         }
         Command::Metrics { original, remeshed, json } => {
             let (a, b) = (read(&original)?, read(&remeshed)?);
@@ -507,44 +373,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Param { input, output, domain, report, uv, figures, map } => {
-            refuse_overwrite(&input, &output)?;
-            let extra: Vec<&Path> = report.iter().chain(uv.iter()).map(|p| p.as_path()).collect();
-            for p in &extra {
-                refuse_overwrite(&input, p)?;
-            }
-            outputs::refuse_duplicates(&[&[output.as_path()][..], &extra].concat())?;
-            let m = read(&input)?;
-            let bar = cli_progress::Bar::new(cli.quiet);
-            let mut options = ParamOptions::default().with_domain(domain);
-            map.apply(&mut options);
-            let cap = parameterize(&m, &options, &bar).map_err(|e| failure::of_pipeline("param", &input, bar.stage(), e))?;
-            bar.finish();
-            let mut staged = vec![outputs::stage_mesh(&output, &cap.cap_mesh(&m))?];
-            if let Some(path) = &uv {
-                let extra = capmesh::io::VertexProperties::default().with_uv(cap.uv());
-                staged.push(capmesh::io::stage_mesh_with_properties(path, &m, &extra, &Default::default())?);
-            }
-            let r = &cap.report;
-            outln!(
-                "{}: {} onto {}: Z* = {}, mean |d_area| = {:.4}, mean |d_angle| = {:.4} rad, flipped faces = {}, {:.2} s",
-                input.display(),
-                r.kind,
-                r.domain,
-                r.z_star.map_or("-".to_string(), |z| format!("{z:.4}")),
-                r.area_distortion.mean_abs,
-                r.angle_distortion.mean_abs,
-                r.flipped_faces,
-                r.seconds
-            );
-            warn_if_poor(&input, r);
-            if let Some(path) = report {
-                staged.push(outputs::stage_json(&path, r)?);
-            }
-            outputs::commit(staged, || format!("param of {} stopped while writing", input.display()))?;
-            if let Some(dir) = figures {
-                figures_arg::done(capmesh::figures::param_figures(&dir, &figures_arg::name(&input), &m, &cap, &Default::default()))?;
-            }
-            refuse_poor(&input, r, map.allow_poor_map)
+            param_cmd::run(param_cmd::ParamArgs { input, output, domain, report, uv, figures, map, quiet: cli.quiet })
         }
     }
 }

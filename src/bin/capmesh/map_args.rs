@@ -1,5 +1,5 @@
 //! The parameterization options `param` and `remesh` share (paper Sec. 3: the initial map
-//! and its `lambda`, the regularisation and refinement of the transport map, the puncture end
+//! and its `lambda`, the smoothing and refinement of the transport map, the puncture end
 //! of closed surfaces, the radius search's coarse level), and how they set [`ParamOptions`].
 
 use capmesh::param::{OpenInitialMap, ParamOptions, PunctureEnd};
@@ -24,7 +24,7 @@ pub struct MapArgs {
     /// mean |d_area| is above 0.3 (very elongated surfaces).
     #[arg(long)]
     pub no_lambda_fallback: bool,
-    /// Regularisation of the final centroid map: auto (default) or a strength >= 0
+    /// Smoothing of the final centroid map: auto (default) or a strength >= 0
     /// (0 is the paper's plain centroid map).
     #[arg(long, default_value = "auto")]
     pub smoothing: Smoothing,

@@ -46,6 +46,7 @@ pub enum Endian {
 /// Options of the GIFTI writer. Defaults: [`GiftiEncoding::GzipBase64Binary`],
 /// [`GiftiFloat::Float32`], [`Endian::Little`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
 pub struct GiftiOptions {
     /// How the values are stored.
     pub encoding: GiftiEncoding,

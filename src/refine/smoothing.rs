@@ -1,8 +1,8 @@
-//! Optional regularisation of the centroid map.
+//! Optional smoothing of the centroid map.
 //!
 //! The transport map moves each vertex to the centroid of its power cell, which is exact in
 //! mass but noisy at the scale of one cell: a thin triangle can lose or gain most of its area
-//! even though its vertices' cells have the right mass. The regularised positions solve
+//! even though its vertices' cells have the right mass. The smoothed positions solve
 //! `min sum_i tau_i |P_i - c_i|^2 + beta E_D(P)` with `E_D` the Dirichlet energy of the surface
 //! (cotangent Laplacian) and `beta = kappa * mean(tau)`: beyond about one edge length the map
 //! follows the transport map, below it the map is locally harmonic, so thin triangles keep
@@ -47,7 +47,7 @@ impl<'a> CentroidSmoother<'a> {
         Ok(())
     }
 
-    /// Regularised positions for centroids `c` with masses `tau`.
+    /// Smoothed positions for centroids `c` with masses `tau`.
     pub fn smooth(&mut self, c: &[[f64; 2]], tau: &[f64], kappa: f64) -> Result<Vec<[f64; 2]>, SolveError> {
         if kappa <= 0.0 {
             return Ok(c.to_vec());
@@ -165,7 +165,7 @@ pub const ITERATIVE_TOLERANCE: f64 = 1e-10;
 /// Conjugate-gradient iterations after which the smoothing system is factored instead.
 pub const ITERATIVE_MAX_ITERATIONS: usize = 300;
 
-/// How the centroid map is regularised.
+/// How the centroid map is smoothed.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Smoothing {
     /// Walk the grid [`AUTO_KAPPAS`] (0 included) from `kappa = 1` towards smaller measured
@@ -193,7 +193,7 @@ impl std::str::FromStr for Smoothing {
 /// The candidates of [`Smoothing::Auto`].
 pub const AUTO_KAPPAS: [f64; 7] = [0.0, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0];
 
-/// One tried regularisation.
+/// One tried smoothing strength.
 #[derive(Debug, Clone, Copy, serde::Serialize)]
 pub struct SmoothingTrial {
     /// Strength.
@@ -204,9 +204,9 @@ pub struct SmoothingTrial {
     pub folded_before_repair: usize,
 }
 
-/// The regularised map that was kept.
+/// The smoothed map that was kept.
 #[derive(Debug, Clone)]
-pub struct Regularised {
+pub struct SmoothedMap {
     /// Strength used.
     pub kappa: f64,
     /// Final planar positions (folds repaired).
@@ -232,14 +232,14 @@ pub const PUNCTURE_HELD_RINGS: usize = 3;
 /// Lifts planar positions onto the domain where areas are measured (the cap or the disk).
 pub type ToDomain<'a> = dyn Fn(&[[f64; 2]]) -> Vec<[f64; 3]> + Sync + 'a;
 
-/// Regularise the transport map `map` of the surface `(vertices, faces)`, repair its folds
+/// Smooth the transport map `map` of the surface `(vertices, faces)`, repair its folds
 /// and keep the candidate with no fold left and the smallest mean `|d_area|` measured on the
 /// domain (`to_domain` lifts planar positions onto the cap or the planar disk). `fixed`
 /// vertices (the boundary) never move; `held` vertices (a superset, see
 /// [`PUNCTURE_HELD_RINGS`]) are not smoothed but the fold repair may move them.
 /// The candidates are independent and evaluated in parallel.
 #[allow(clippy::too_many_arguments)]
-pub fn regularise(
+pub fn smooth_centroid_map(
     map: &TransportMap,
     vertices: &[[f64; 3]],
     faces: &[[u32; 3]],
@@ -249,7 +249,7 @@ pub fn regularise(
     radius: f64,
     smoothing: Smoothing,
     to_domain: &ToDomain<'_>,
-) -> Result<Regularised, SolveError> {
+) -> Result<SmoothedMap, SolveError> {
     // One symbolic factorization for all candidates (they run in parallel on clones).
     let mut primed = CentroidSmoother::new(weights, held);
     if smoothing == Smoothing::Auto {
@@ -260,13 +260,13 @@ pub fn regularise(
         let rep = untangle(&mut p, faces, fixed, radius);
         let d = Stats::of(area_distortion(vertices, &to_domain(&p), faces)).mean_abs;
         let trial = SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before };
-        Ok(Candidate { key: (rep.folded_after > 0, d), trial, kept: Regularised { kappa, positions: p, untangle: rep, trials: Vec::new() } })
+        Ok(Candidate { key: (rep.folded_after > 0, d), trial, kept: SmoothedMap { kappa, positions: p, untangle: rep, trials: Vec::new() } })
     };
     let mut done: Vec<Candidate> = match smoothing {
         Smoothing::Fixed(k) => vec![evaluate(k)?],
         Smoothing::Auto => walk_grid(&evaluate)?,
     };
-    let best = best_of(done.iter()).ok_or(SolveError::Singular { what: "regularisation (no candidate)" })?;
+    let best = best_of(done.iter()).ok_or(SolveError::Singular { what: "centroid-map smoothing (no candidate)" })?;
     let trials = done.iter().map(|c| c.trial).collect();
     let mut kept = done.swap_remove(best).kept;
     kept.trials = trials;
@@ -334,7 +334,7 @@ struct Candidate {
     /// (any fold left, mean `|d_area|`), compared lexicographically.
     key: (bool, f64),
     trial: SmoothingTrial,
-    kept: Regularised,
+    kept: SmoothedMap,
 }
 
 #[cfg(test)]

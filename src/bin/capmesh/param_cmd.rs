@@ -1,0 +1,65 @@
+//! `capmesh param`: parameterize one mesh onto the adaptive spherical cap (or a fixed baseline
+//! domain) and write the cap mesh, optionally the input with the map as texture coordinates,
+//! a JSON report and figures.
+
+use crate::failure::{self, Failure};
+use crate::{cli_progress, figures_arg, map_args, outputs};
+use crate::{read, refuse_overwrite, refuse_poor, warn_if_poor};
+use capmesh::cap::Domain;
+use capmesh::param::{parameterize, ParamOptions};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `capmesh param`.
+pub struct ParamArgs {
+    pub input: PathBuf,
+    pub output: PathBuf,
+    pub domain: Domain,
+    pub report: Option<PathBuf>,
+    pub uv: Option<PathBuf>,
+    pub figures: Option<PathBuf>,
+    pub map: map_args::MapArgs,
+    pub quiet: bool,
+}
+
+/// Run `capmesh param`.
+pub fn run(args: ParamArgs) -> Result<(), Failure> {
+    let ParamArgs { input, output, domain, report, uv, figures, map, quiet } = args;
+    refuse_overwrite(&input, &output)?;
+    let extra: Vec<&Path> = report.iter().chain(uv.iter()).map(|p| p.as_path()).collect();
+    for p in &extra {
+        refuse_overwrite(&input, p)?;
+    }
+    outputs::refuse_duplicates(&[&[output.as_path()][..], &extra].concat())?;
+    let m = read(&input)?;
+    let bar = cli_progress::Bar::new(quiet);
+    let mut options = ParamOptions::default().with_domain(domain);
+    map.apply(&mut options);
+    let cap = parameterize(&m, &options, &bar).map_err(|e| failure::of_pipeline("param", &input, bar.stage(), e))?;
+    bar.finish();
+    let mut staged = vec![outputs::stage_mesh(&output, &cap.cap_mesh(&m))?];
+    if let Some(path) = &uv {
+        let extra = capmesh::io::VertexProperties::default().with_uv(cap.uv());
+        staged.push(capmesh::io::stage_mesh_with_properties(path, &m, &extra, &Default::default())?);
+    }
+    let r = &cap.report;
+    outln!(
+        "{}: {} onto {}: Z* = {}, mean |d_area| = {:.4}, mean |d_angle| = {:.4} rad, flipped faces = {}, {:.2} s",
+        input.display(),
+        r.kind,
+        r.domain,
+        r.z_star.map_or("-".to_string(), |z| format!("{z:.4}")),
+        r.area_distortion.mean_abs,
+        r.angle_distortion.mean_abs,
+        r.flipped_faces,
+        r.seconds
+    );
+    warn_if_poor(&input, r);
+    if let Some(path) = report {
+        staged.push(outputs::stage_json(&path, r)?);
+    }
+    outputs::commit(staged, || format!("param of {} stopped while writing", input.display()))?;
+    if let Some(dir) = figures {
+        figures_arg::done(capmesh::figures::param_figures(&dir, &figures_arg::name(&input), &m, &cap, &Default::default()))?;
+    }
+    refuse_poor(&input, r, map.allow_poor_map)
+}

@@ -1,0 +1,158 @@
+//! `capmesh remesh`: remesh one mesh through its adaptive cap (a uniform cap mesh or a
+//! latitude/longitude grid pulled back by the inverse map, then the shape and area stages),
+//! carry per-vertex attributes to it, and write the remesh, a JSON report and figures.
+
+use crate::failure::{self, Failure};
+use crate::{attributes_arg, cli_progress, figures_arg, map_args, outputs};
+use crate::{print_quality, read, refuse_overwrite, refuse_poor, warn_if_poor};
+use capmesh::io;
+use capmesh::remesh::{CapGrid, RemeshOptions};
+use std::path::PathBuf;
+
+/// Arguments of `capmesh remesh`.
+pub struct RemeshArgs {
+    pub input: PathBuf,
+    pub output: PathBuf,
+    pub attribute: Vec<PathBuf>,
+    pub faces: usize,
+    pub lat_long: bool,
+    pub rings: usize,
+    pub sectors: usize,
+    pub report: Option<PathBuf>,
+    pub area_equalization: usize,
+    pub optimize: capmesh::remesh::Optimize,
+    pub relax_iterations: usize,
+    pub polish_iterations: usize,
+    pub shape_weight: f64,
+    pub no_resample: bool,
+    pub sizing: capmesh::Sizing,
+    pub figures: Option<PathBuf>,
+    pub map: map_args::MapArgs,
+    pub quiet: bool,
+}
+
+/// The `--report` file: the remesh's metrics and stage times at the top level, the stages'
+/// reports and the parameterization's report below.
+#[derive(serde::Serialize)]
+struct Flat<'a> {
+    faces: usize,
+    d_face: f64,
+    d_face_relative: f64,
+    d_surface_vertex: f64,
+    d_surface_sampled: f64,
+    d_surface_vertex_relative: f64,
+    d_surface_sampled_relative: f64,
+    min_angle_deg: f64,
+    zero_area_faces: usize,
+    seconds: f64,
+    read_seconds: f64,
+    pullback_seconds: f64,
+    shape_seconds: f64,
+    equalize_seconds: f64,
+    metrics_seconds: f64,
+    write_seconds: f64,
+    quality: capmesh::MapQuality,
+    optimize: capmesh::remesh::Optimize,
+    shape: capmesh::remesh::shape::ShapeReport,
+    area_equalization: capmesh::refine::area_refine::AreaRefineReport,
+    parameterization: &'a capmesh::ParamReport,
+}
+
+/// Run `capmesh remesh`.
+pub fn run(args: RemeshArgs) -> Result<(), Failure> {
+    let RemeshArgs {
+        input,
+        output,
+        attribute,
+        faces,
+        lat_long,
+        rings,
+        sectors,
+        report,
+        area_equalization,
+        optimize,
+        relax_iterations,
+        polish_iterations,
+        shape_weight,
+        no_resample,
+        sizing,
+        figures,
+        map,
+        quiet,
+    } = args;
+    refuse_overwrite(&input, &output)?;
+    if let Some(r) = &report {
+        refuse_overwrite(&input, r)?;
+        outputs::refuse_duplicates(&[&output, r])?;
+    }
+    let t_read = std::time::Instant::now();
+    let m = read(&input)?;
+    let attributes = attributes_arg::read_all(&attribute, &input, &m, &output)?;
+    let read_seconds = t_read.elapsed().as_secs_f64();
+    let bar = cli_progress::Bar::new(quiet);
+    let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
+    let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing);
+    let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape);
+    map.apply(&mut options.param);
+    let (out, rep, points) = capmesh::remesh_located(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
+    bar.finish();
+    let t_write = std::time::Instant::now();
+    let carried: Vec<_> = attributes.iter().map(|a| capmesh::carry_attribute(&m, &points, a)).collect();
+    let mut staged = if carried.is_empty() || io::Format::from_path(&output) != Some(io::Format::Ply) {
+        vec![outputs::stage_mesh(&output, &out)?]
+    } else {
+        vec![io::stage_mesh_with_properties(&output, &out, &attributes_arg::ply_properties(&carried), &Default::default())?]
+    };
+    if !carried.is_empty() && io::Format::from_path(&output) == Some(io::Format::Gifti) {
+        for (path, file) in attributes_arg::stage_gifti(&output, &carried)? {
+            refuse_overwrite(&input, &path)?;
+            staged.push(file);
+        }
+    }
+    let write_seconds = t_write.elapsed().as_secs_f64();
+    outln!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
+    warn_if_poor(&input, &rep.param);
+    if rep.quality.zero_area_faces > 0 {
+        eprintln!(
+            "warning: {}: the remesh has {} zero-area faces; check the input with `capmesh check`, try fewer faces, \
+             or remove them with an edge collapse",
+            input.display(),
+            rep.quality.zero_area_faces
+        );
+    }
+    print_quality(&rep.quality)?;
+    if let Some(path) = report {
+        let q = &rep.quality;
+        staged.push(outputs::stage_json(
+            &path,
+            &Flat {
+                faces: q.faces,
+                d_face: q.d_face,
+                d_face_relative: q.d_face_relative,
+                d_surface_vertex: q.d_surface_vertex,
+                d_surface_sampled: q.d_surface_sampled,
+                d_surface_vertex_relative: q.d_surface_vertex_relative,
+                d_surface_sampled_relative: q.d_surface_sampled_relative,
+                min_angle_deg: q.min_angle_deg,
+                zero_area_faces: q.zero_area_faces,
+                seconds: rep.seconds,
+                read_seconds,
+                pullback_seconds: rep.pullback_seconds,
+                shape_seconds: rep.shape_seconds,
+                equalize_seconds: rep.equalize_seconds,
+                metrics_seconds: rep.metrics_seconds,
+                write_seconds,
+                quality: rep.param.quality,
+                optimize: rep.optimize,
+                shape: rep.shape,
+                area_equalization: rep.area_equalization,
+                parameterization: &rep.param,
+            },
+        )?);
+    }
+    outputs::commit(staged, || format!("remesh of {} stopped while writing", input.display()))?;
+    if let Some(dir) = figures {
+        figures_arg::done(capmesh::figures::remesh_figures(&dir, &figures_arg::name(&input), &m, &out, &rep, &Default::default()))?;
+    }
+    refuse_poor(&input, &rep.param, map.allow_poor_map)
+}
