@@ -6,7 +6,7 @@ pub mod closed;
 pub(crate) mod disk_conformal;
 pub mod harmonic;
 pub(crate) mod mobius;
-pub(crate) mod puncture;
+pub mod puncture;
 pub mod stretch_energy;
 
 pub use disk_conformal::{disk_conformal_map, DiskConformalOptions, DiskConformalReport};
