@@ -266,7 +266,7 @@ typedef struct capmesh_v1_param_options {
    */
   double lambda;
   /**
-   * Centroid-map regularisation strength kappa; negative = automatic choice (default),
+   * Centroid-map smoothing strength kappa; negative = automatic choice (default),
    * 0 = the paper's plain centroid map.
    */
   double smoothing;

@@ -56,7 +56,7 @@ pub struct capmesh_v1_param_options {
     pub radius: f64,
     /// Quasi-conformal factor of closed surfaces, in [0, 1]. Default 0.2.
     pub lambda: f64,
-    /// Centroid-map regularisation strength kappa; negative = automatic choice (default),
+    /// Centroid-map smoothing strength kappa; negative = automatic choice (default),
     /// 0 = the paper's plain centroid map.
     pub smoothing: f64,
     /// Sweeps of the face-level area refinement after transport (over-relaxed Gauss-Seidel);
