@@ -1,16 +1,20 @@
-//! Removal of self-crossing faces from the finished remesh (ours; see [`super`] and
+//! Removal of slivers and self-crossing faces from the finished remesh (ours; see [`super`] and
 //! docs/method.md, "18. Remesh shape").
 //!
 //! Every remesh vertex lies on the input surface, but a flat triangle between three surface
 //! points can still cut through a neighbouring one where the surface bends sharply at the
-//! remesh's scale (between fingers, at the rim of an ear). On the shared meshes every such
-//! crossing is local: the two faces share a vertex or are at most two rings apart. This pass
-//! finds the crossing faces (MeshLab's test, [`crate::metrics::self_intersection`]) and moves
-//! their free vertices in the map's plane, lifted through the inverse map as everywhere in the
-//! shape stage, to the candidate position with the fewest crossings among the faces around the
-//! vertex: towards the planar centroid of its neighbours, or along the surface relaxation step.
-//! A move is kept only if it lowers the local count and keeps every incident planar face
-//! oriented, so the planar mesh stays an embedding and no vertex leaves the surface.
+//! remesh's scale (between fingers, at the rim of an ear), and the last slivers sit at the same
+//! places. On the shared meshes every crossing is local: the two faces share a vertex or are at
+//! most two rings apart. The pass runs twice, first on the faces with an angle below
+//! [`MIN_ANGLE`], then on the crossing faces (MeshLab's test,
+//! [`crate::metrics::self_intersection`]): it flips an edge of a flagged face where that helps,
+//! then moves the free vertices of flagged faces in the map's plane, lifted through the inverse
+//! map as everywhere in the shape stage, to the best of a few candidates (towards the planar
+//! centroid of the neighbours or towards one neighbour, or along the relaxation step). A change
+//! is kept only if it lowers the crossings among the faces around it (or, for a sliver, raises
+//! its smallest angle without adding a crossing) and leaves no new angle below the bound; every
+//! planar face stays oriented, so the planar mesh stays an embedding and no vertex leaves the
+//! surface.
 
 use super::smooth::{relax_vertex, ring_valid_in_plane};
 use super::state::{edge_faces, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
@@ -99,8 +103,9 @@ fn local_crossings(mesh: &Shaping, ring: &[u32], near: &[u32], v: usize, x: [f64
     count
 }
 
-/// The best move of free vertex `v` that lowers its local crossing count: planar point,
-/// surface point and hint.
+/// The best move of free vertex `v` that lowers its local crossing count (or, when `slivers`,
+/// raises the smallest angle of its faces from below [`MIN_ANGLE`] with as many crossings):
+/// planar point, surface point and hint.
 fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &SurfaceLift, slivers: bool) -> Option<([f64; 2], [f64; 3], u32)> {
     let ring = incidence.of(v);
     let near = faces_around(mesh, incidence, v);
@@ -169,9 +174,11 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
     best.map(|(_, _, q, x, face)| (q, x, face))
 }
 
-/// Flip an edge of crossing face `t` if that lowers the crossings among the faces around it,
-/// keeps both new faces oriented in the plane and leaves no smaller angle than the pair had
-/// (or [`MIN_ANGLE`]). Returns whether it flipped.
+/// Flip an edge of face `t` if that lowers the crossings among the faces around it (or, when
+/// `slivers`, raises the pair's smallest angle from below [`MIN_ANGLE`] with as many crossings
+/// and no sharper bend than [`CREASE`] or the pair's own), keeping both new faces oriented in
+/// the plane and no smaller angle than the pair had (or [`MIN_ANGLE`]). Returns whether it
+/// flipped.
 fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: bool) -> bool {
     let edges = edge_faces(&mesh.faces);
     let f = mesh.faces[t as usize];
@@ -227,8 +234,9 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: b
     false
 }
 
-/// Move the free vertices of crossing faces of `mesh` until none is left or a round makes no
-/// move (at most [`ROUNDS`] rounds). Deterministic: vertices are visited in index order.
+/// Flip and move around the slivers, then the crossing faces, of `mesh` until none is left or a
+/// round changes nothing (at most [`ROUNDS`] rounds each). Deterministic: faces and vertices are
+/// visited in index order.
 pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift) -> UncrossReport {
     let crossing = |mesh: &Shaping| self_intersecting_faces(&TriMesh::new(mesh.position.clone(), mesh.faces.clone()));
     let slivers = |mesh: &Shaping| -> Vec<u32> {
