@@ -26,6 +26,8 @@ pub(crate) mod smooth;
 pub(crate) mod state;
 pub(crate) mod uncross;
 
+pub use uncross::UncrossReport;
+
 use rayon::prelude::*;
 use state::{Role, Shaping, SurfaceLift};
 
@@ -124,7 +126,7 @@ pub struct ShapeReport {
     /// The remesh's angles after it.
     pub after: crate::metrics::angles::AngleQuality,
     /// The removal of self-crossing faces after the area equalization.
-    pub uncross: uncross::UncrossReport,
+    pub uncross: UncrossReport,
 }
 
 /// The edge length of equilateral faces of `mesh`'s mean area.
