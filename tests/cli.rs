@@ -349,7 +349,8 @@ fn metrics_report_shape_and_self_intersections() {
     let dir = TempDir::new("cli-metrics");
     let input = data("closed_bunny_npm.obj.gz");
     let remeshed = dir.join("bunny.ply");
-    let run = capmesh().args(["remesh", "--quiet"]).arg(&input).arg("-o").arg(&remeshed).args(["--faces", "2000"]).output().unwrap();
+    let remesh_json = dir.join("bunny.json");
+    let run = capmesh().args(["remesh", "--quiet"]).arg(&input).arg("-o").arg(&remeshed).args(["--faces", "2000", "--report"]).arg(&remesh_json).output().unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let report = |threads: &str, a: &Path, b: &Path| {
         let run = capmesh().args(["--threads", threads, "metrics", "--json"]).arg(a).arg(b).output().unwrap();
@@ -382,6 +383,16 @@ fn metrics_report_shape_and_self_intersections() {
     assert!((0.0..=1.0).contains(&f("share_faces_angle_below_30")) && (0.0..=1.0).contains(&f("share_interior_valence_6")));
     assert!(f("hausdorff_distance") >= f("d_surface_vertex") && f("hausdorff_distance_relative") < 0.1);
     assert_eq!(json["self_intersecting_faces_input"].as_u64(), Some(0), "the bunny does not intersect itself");
+    // The remesh's own report has the same figures as `metrics` of the written mesh (the
+    // angles to the precision the PLY's coordinates keep).
+    let own: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&remesh_json).unwrap()).unwrap();
+    for key in ["mean_min_angle_deg", "share_faces_angle_below_30", "max_angle_deg", "share_interior_valence_6", "hausdorff_distance_relative"] {
+        let (a, b) = (own[key].as_f64(), json[key].as_f64());
+        assert!(a.zip(b).is_some_and(|(a, b)| (a - b).abs() <= 1e-6 * b.abs().max(1.0)), "remesh report {key} {a:?} vs metrics {b:?}");
+    }
+    for key in ["self_intersecting_faces", "self_intersecting_faces_input", "faces"] {
+        assert_eq!(own[key], json[key], "remesh report {key}");
+    }
     let same: serde_json::Value = serde_json::from_slice(&report("2", &remeshed, &remeshed)).unwrap();
     assert_eq!(same["self_intersecting_faces"], json["self_intersecting_faces"]);
     assert_eq!(same["self_intersecting_faces_input"], json["self_intersecting_faces"]);
