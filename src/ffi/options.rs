@@ -82,19 +82,19 @@ pub struct capmesh_v1_remesh_options {
     /// Parameterization options.
     pub param: capmesh_v1_param_options,
     /// Sweeps of the area equalization of the pulled-back mesh when the shape stage does not
-    /// run (`CAPMESH_V1_OPTIMIZE_AREA`, or the lat-long grid); after the shape stage it makes
-    /// its own 10 sweeps. 0 = the plain pull-back. Default 30.
+    /// run (`CAPMESH_V1_OPTIMIZE_AREA`, or the lat-long grid); after the shape stage the polish
+    /// equalizes the areas. 0 = the plain pull-back. Default 30.
     pub area_equalization: u32,
     /// One of `CAPMESH_V1_OPTIMIZE_*`: what is optimised after the pull-back. Default shape and
     /// area (0).
     pub optimize: i32,
     /// Relaxation iterations of the shape stage (edge flips and tangential relaxation on the
-    /// surface). Default 20.
+    /// surface). Default 40.
     pub relax_iterations: u32,
-    /// Polish iterations of the shape stage (joint area and shape steps). Default 20.
+    /// Polish iterations of the shape stage (joint area and shape steps). Default 60.
     pub polish_iterations: u32,
     /// Weight of the shape term against the area term in the polish, finite and >= 0 (larger:
-    /// better angles, less equal areas). Default 0.3.
+    /// better angles, less equal areas). Default 0.1.
     pub shape_weight: f64,
     /// 1 = split long and collapse short edges in the shape stage where the map is resolved
     /// at the remesh's scale (default; better angles); 0 = off (the grid's vertex count).

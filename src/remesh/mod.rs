@@ -334,7 +334,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
         let role: Vec<shape::state::Role> = (0..positions.len()).map(|v| if fixed[v] || !has_plane[v] { shape::state::Role::Fixed } else { shape::state::Role::Free }).collect();
         let orientation = shape::state::planar_orientation(&faces, &planar, &has_plane, &role);
         let mut state = shape::state::Shaping { faces, plane: planar, position: positions, hint: vec![u32::MAX; has_plane.len()], role, has_plane: has_plane.clone(), orientation };
-        uncross_report = shape::uncross::uncross(&mut state, &lift);
+        uncross_report = shape::uncross::uncross(&mut state, &lift, options.shape.crease_deg.to_radians());
         (faces, planar, positions) = (state.faces, state.plane, state.position);
     }
     let points = if locate { transfer::surface_points(&inverse, &planar, &has_plane, &positions) } else { Vec::new() };

@@ -178,7 +178,7 @@ const FOLD_DEG: f64 = 120.0;
 
 /// Cosine of the angle between the normals of `(a, b, c)` and `(b, a, d)`: 1 when flat, -1
 /// when folded back (1 for a degenerate face, which the angle test has already judged).
-fn bend_cos(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+pub(crate) fn bend_cos(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
     let n1 = cross(sub(b, a), sub(c, a));
     let n2 = cross(sub(a, b), sub(d, b));
     let l = norm(n1) * norm(n2);

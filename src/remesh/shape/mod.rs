@@ -36,21 +36,22 @@ use state::{Role, Shaping, SurfaceLift};
 #[non_exhaustive]
 pub struct ShapeOptions {
     /// Relaxation iterations (valence and angle flips, then a tangential relaxation pass).
-    /// Default 20.
+    /// Default 40 (20 left a mean smallest angle about 0.3 degrees lower; docs/method.md,
+    /// "Remesh shape").
     pub relax_iterations: usize,
-    /// Polish iterations (angle flips, then a joint area and shape step of every vertex).
-    /// Default 20.
+    /// Polish iterations (angle flips, then a joint area and shape step of every vertex): the
+    /// polish also equalizes the areas. Default 60.
     pub polish_iterations: usize,
     /// Split long and collapse short edges in the first half of the relaxation
     /// ([`resample`]), where the map is resolved at the remesh's scale. Default on: it raised
     /// the mean smallest angle on 10 of the 11 shared meshes (docs/method.md, "Remesh shape").
     pub resample: bool,
-    /// Weight `mu` of the shape term against the area term in the polish. Default 0.3: on
-    /// the shared meshes 0.03 and 0.1 left more faces below 30 degrees, 0.3 raised d_face_rel
-    /// by about 0.003 (docs/method.md, "Remesh shape").
+    /// Weight `mu` of the shape term against the area term in the polish. Default 0.1: with
+    /// the polish as the last area step, 0.1 gave both lower d_face_rel and a higher mean
+    /// smallest angle than 0.3 on the shared meshes (docs/method.md, "Remesh shape").
     pub shape_weight: f64,
-    /// Sweeps of the area equalization after the shape stage. Default 10 (more lower the
-    /// angles for little area gained).
+    /// Sweeps of the pure-area equalization after the shape stage. Default 0: they lowered the
+    /// mean smallest angle by 2-3 degrees for the area the polish gains as well.
     pub area_sweeps: usize,
     /// Largest angle (degrees) between the normals of the two faces of a flipped edge after
     /// the flip, unless the old pair was bent more: sharper edges are creases and are kept.
@@ -62,7 +63,7 @@ pub struct ShapeOptions {
 
 impl Default for ShapeOptions {
     fn default() -> Self {
-        Self { relax_iterations: 20, polish_iterations: 20, resample: true, shape_weight: 0.3, area_sweeps: 10, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform }
+        Self { relax_iterations: 40, polish_iterations: 60, resample: true, shape_weight: 0.1, area_sweeps: 0, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform }
     }
 }
 

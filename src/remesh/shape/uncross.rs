@@ -16,10 +16,11 @@
 //! planar face stays oriented, so the planar mesh stays an embedding and no vertex leaves the
 //! surface.
 
+use super::flips::bend_cos;
 use super::smooth::{relax_vertex, ring_valid_in_plane};
 use super::state::{edge_faces, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
 use crate::metrics::self_intersection::{face_pair_intersects, self_intersecting_faces};
-use crate::mesh::geometry::{cross, dot, norm, sub, triangle_area};
+use crate::mesh::geometry::triangle_area;
 use crate::mesh::TriMesh;
 
 /// Rounds of detection and moves.
@@ -34,10 +35,6 @@ const MIN_ANGLE: f64 = 15.0;
 
 /// Smallest gain (radians) of a smallest angle for a move or flip made for it alone.
 const MIN_GAIN: f64 = 1e-3;
-
-/// Degrees: the bend between a pair's normals that a flip made for an angle alone may reach
-/// (the shape stage's crease bound).
-const CREASE: f64 = 60.0;
 
 /// Fractions of the way to the planar neighbour centroid that are tried.
 const FRACTIONS: [f64; 5] = [1.0, 0.75, 0.5, 0.25, 0.1];
@@ -176,10 +173,10 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
 
 /// Flip an edge of face `t` if that lowers the crossings among the faces around it (or, when
 /// `slivers`, raises the pair's smallest angle from below [`MIN_ANGLE`] with as many crossings
-/// and no sharper bend than [`CREASE`] or the pair's own), keeping both new faces oriented in
-/// the plane and no smaller angle than the pair had (or [`MIN_ANGLE`]). Returns whether it
-/// flipped.
-fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: bool) -> bool {
+/// and no sharper bend than the crease bound `acos(cos_crease)` or the pair's own), keeping
+/// both new faces oriented in the plane and no smaller angle than the pair had (or
+/// [`MIN_ANGLE`]). Returns whether it flipped.
+fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: bool, cos_crease: f64) -> bool {
     let edges = edge_faces(&mesh.faces);
     let f = mesh.faces[t as usize];
     for k in 0..3 {
@@ -210,12 +207,8 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: b
         }
         // A sliver flip (no crossing removed) may bend the pair no more than the crease bound
         // or than it was bent.
-        let bend = |fs: &[[[f64; 3]; 3]; 2]| {
-            let n = fs.map(|p| cross(sub(p[1], p[0]), sub(p[2], p[0])));
-            let c = dot(n[0], n[1]) / (norm(n[0]) * norm(n[1]));
-            c.clamp(-1.0, 1.0).acos()
-        };
-        let sliver_gain = slivers && angle_old < MIN_ANGLE.to_radians() && angle_new > angle_old + MIN_GAIN && bend(&new_faces) <= bend(&old_faces).max(CREASE.to_radians());
+        let bent_ok = bend_cos(xc, xd, xb, xa) >= bend_cos(xa, xb, xc, xd).min(cos_crease);
+        let sliver_gain = slivers && angle_old < MIN_ANGLE.to_radians() && angle_new > angle_old + MIN_GAIN && bent_ok;
         let mut near = faces_around(mesh, incidence, a as usize);
         near.extend(faces_around(mesh, incidence, b as usize));
         near.sort_unstable();
@@ -235,9 +228,11 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: b
 }
 
 /// Flip and move around the slivers, then the crossing faces, of `mesh` until none is left or a
-/// round changes nothing (at most [`ROUNDS`] rounds each). Deterministic: faces and vertices are
+/// round changes nothing (at most [`ROUNDS`] rounds each). `crease` is the shape stage's bound
+/// (radians, [`super::ShapeOptions::crease_deg`]). Deterministic: faces and vertices are
 /// visited in index order.
-pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift) -> UncrossReport {
+pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift, crease: f64) -> UncrossReport {
+    let cos_crease = crease.cos();
     let crossing = |mesh: &Shaping| self_intersecting_faces(&TriMesh::new(mesh.position.clone(), mesh.faces.clone()));
     let slivers = |mesh: &Shaping| -> Vec<u32> {
         (0..mesh.faces.len() as u32)
@@ -263,7 +258,7 @@ pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift) -> UncrossReport {
             }
             let mut flips = 0;
             for &t in &flagged {
-                if uncross_by_flip(mesh, &mesh.incidence(), t, sliver_phase) {
+                if uncross_by_flip(mesh, &mesh.incidence(), t, sliver_phase, cos_crease) {
                     flips += 1;
                 }
             }
