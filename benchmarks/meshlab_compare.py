@@ -5,6 +5,7 @@ Methods, all at the same face count (TARGET, 5000 by default):
 - capmesh: the CLI, `target/release/capmesh remesh IN -o OUT --faces N` plus any extra
   arguments from `--capmesh-args` or the CAPMESH_ARGS environment variable (e.g.
   `--capmesh-args "--optimize area"`, to compare variants);
+- capmesh_curv: the same with `--sizing curvature` (smaller faces where the surface is curved);
 - MeshLab (pymeshlab): isotropic explicit remeshing (target edge length), uniform mesh
   resampling (marching cubes on a distance field, cell size) and screened Poisson
   reconstruction (depth 8, then quadric edge collapse to a face count);
@@ -79,6 +80,7 @@ QUICK_MESHES = ["open_meg_helmet_babysquid_mne", "closed_bunny_npm", "closed_bir
 # (faces fall as its square)).
 METHODS = {
     "capmesh": ("capmesh", "count"),
+    "capmesh_curv": ("capmesh --sizing curvature", "count"),
     "isotropic": ("MeshLab isotropic explicit remeshing", "length"),
     "resampling": ("MeshLab uniform mesh resampling", "length"),
     "poisson": ("MeshLab screened Poisson + decimation", "count"),
@@ -282,6 +284,7 @@ def initial_param(method, stats, target):
     edge = edge_for(stats["area"], target)
     return {
         "capmesh": target,
+        "capmesh_curv": target,
         "isotropic": edge,
         "resampling": edge,
         "poisson": target,
@@ -387,7 +390,7 @@ def main():
     if os.path.exists(TUNED) and not args.retune:
         with open(TUNED) as fh:
             cache = json.load(fh)
-    cap_key = "capmesh " + " ".join(extra) + " @" + binary_hash() if "capmesh" in methods else ""
+    cap_key = "capmesh " + " ".join(extra) + " @" + binary_hash() if any(m.startswith("capmesh") for m in methods) else ""
     worker = Worker(args.timeout)
     work = tempfile.mkdtemp(prefix="capmesh-compare-")
     rows = []
@@ -402,12 +405,14 @@ def main():
             def run(method, param, out):
                 if method == "capmesh":
                     return run_capmesh(obj, param, out, extra, args.timeout)
+                if method == "capmesh_curv":
+                    return run_capmesh(obj, param, out, extra + ["--sizing", "curvature"], args.timeout)
                 return worker.run(method, obj, param, out, stats["open"])
 
             # Tuning (untimed), or the cached parameter.
             params = {}
             for method in methods:
-                key = f"{cap_key if method == 'capmesh' else method}|{name}|{target}"
+                key = f"{cap_key + ' ' + method if method.startswith('capmesh') else method}|{name}|{target}"
                 if key in cache:
                     params[method] = cache[key]
                     continue
@@ -435,7 +440,7 @@ def main():
                     except Exception as e:
                         runs[method].append((None, 0.0, str(e)))
             for method in methods:
-                label = METHODS[method][0] + (f" {' '.join(extra)}" if method == "capmesh" and extra else "")
+                label = METHODS[method][0] + (f" {' '.join(extra)}" if method.startswith("capmesh") and extra else "")
                 row = {"mesh": name, "method": method, "label": label, "param": params[method].get("param"), "within_tolerance": params[method].get("within"), "seconds": None, "seconds_runs": [], "metrics": None, "error": params[method].get("error", "")}
                 if not row["error"]:
                     failed = [r for r in runs[method] if r[0] is None]

@@ -418,7 +418,8 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
 
     let (shaped, report) = run(&o);
     assert_eq!(report["optimize"], "shape+area", "{}", report["optimize"]);
-    assert_eq!(report["shape"]["iterations"].as_u64(), Some(40), "{}", report["shape"]);
+    assert_eq!(report["shape"]["iterations"].as_u64(), Some((shape.relax_iterations + shape.polish_iterations) as u64), "{}", report["shape"]);
+    assert_eq!((o.sizing_strength, &report["shape"]["sizing"]), (0.0, &serde_json::json!("uniform")));
     let shaped_share = share_below_30(&shaped);
 
     o.optimize = CAPMESH_V1_OPTIMIZE_AREA;
@@ -435,6 +436,10 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     o.polish_iterations = 0;
     let (_, report) = run(&o);
     assert_eq!(report["shape"]["iterations"].as_u64(), Some(0), "{}", report["shape"]);
+    // The curvature sizing is passed through (its effect: tests/remesh_sizing.rs).
+    o.sizing_strength = 2.5;
+    let (_, report) = run(&o);
+    assert_eq!(report["shape"]["sizing"], "curvature=2.5", "{}", report["shape"]);
 
     let mut out = null_mut();
     let mut refused = |o: &capmesh_v1_remesh_options, words: &str| {
@@ -453,4 +458,9 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     let mut bad = capmesh_v1_remesh_options_default();
     bad.resample = 2;
     refused(&bad, "resample = 2");
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.sizing_strength = -1.0;
+    refused(&bad, "sizing_strength = -1");
+    bad.sizing_strength = f64::NAN;
+    refused(&bad, "sizing_strength");
 }

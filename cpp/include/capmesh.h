@@ -315,8 +315,8 @@ typedef struct capmesh_v1_remesh_options {
   struct capmesh_v1_param_options param;
   /**
    * Sweeps of the area equalization of the pulled-back mesh when the shape stage does not
-   * run (`CAPMESH_V1_OPTIMIZE_AREA`, or the lat-long grid); after the shape stage it makes
-   * its own 10 sweeps. 0 = the plain pull-back. Default 30.
+   * run (`CAPMESH_V1_OPTIMIZE_AREA`, or the lat-long grid); after the shape stage the polish
+   * equalizes the areas. 0 = the plain pull-back. Default 30.
    */
   uint32_t area_equalization;
   /**
@@ -326,16 +326,16 @@ typedef struct capmesh_v1_remesh_options {
   int32_t optimize;
   /**
    * Relaxation iterations of the shape stage (edge flips and tangential relaxation on the
-   * surface). Default 20.
+   * surface). Default 40.
    */
   uint32_t relax_iterations;
   /**
-   * Polish iterations of the shape stage (joint area and shape steps). Default 20.
+   * Polish iterations of the shape stage (joint area and shape steps). Default 60.
    */
   uint32_t polish_iterations;
   /**
    * Weight of the shape term against the area term in the polish, finite and >= 0 (larger:
-   * better angles, less equal areas). Default 0.3.
+   * better angles, less equal areas). Default 0.1.
    */
   double shape_weight;
   /**
@@ -343,6 +343,12 @@ typedef struct capmesh_v1_remesh_options {
    * at the remesh's scale (default; better angles); 0 = off (the grid's vertex count).
    */
   int32_t resample;
+  /**
+   * Face sizing of the shape stage: 0 = uniform, equal areas (default, the paper's goal);
+   * a finite strength > 0 = smaller faces where the surface is curved (the CLI's
+   * `--sizing curvature=S`; `--sizing curvature` is 3).
+   */
+  double sizing_strength;
 } capmesh_v1_remesh_options;
 
 /**

@@ -178,6 +178,12 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     resample = on ? 1 : 0;
     return *this;
   }
+  /// Face sizing: 0 = uniform, equal areas (the default); a strength > 0 = smaller faces
+  /// where the surface is curved (the CLI's `--sizing curvature=S`).
+  RemeshOptions &with_sizing_strength(double strength) {
+    sizing_strength = strength;
+    return *this;
+  }
   /// Uniform grid of about `faces` faces.
   static RemeshOptions uniform(uint32_t faces) {
     RemeshOptions o;

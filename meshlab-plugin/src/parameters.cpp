@@ -110,6 +110,11 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 		"Resample", d.resample != 0, "Split and collapse edges (shape+area)",
 		"Also split long and collapse short edges in the shape stage: better angles on smooth "
 		"surfaces, slivers where thin parts fold at the remesh's scale."));
+	list.addParam(RichFloat(
+		"SizingStrength", Scalarm(d.sizing_strength), "Curvature sizing (shape+area)",
+		"0: uniform, equal areas (the default). A strength > 0: smaller faces where the surface "
+		"is curved, for a smaller distance to the input at the same face count (3 is the "
+		"command line's --sizing curvature)."));
 	addParamOptions(list, d.param);
 }
 
@@ -129,6 +134,7 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 	o.polish_iterations = nonNegative(list, "PolishIterations");
 	o.shape_weight = double(list.getFloat("ShapeWeight"));
 	o.resample = list.getBool("Resample") ? 1 : 0;
+	o.sizing_strength = double(list.getFloat("SizingStrength"));
 	o.param = readParamOptions(list);
 	return o;
 }

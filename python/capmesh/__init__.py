@@ -138,7 +138,7 @@ def remesh(vertices, faces, faces_target: int = 5000, lat_long: Optional[Tuple[i
     (``--faces``), or a latitude/longitude grid of ``lat_long = (rings, sectors)``. Returns
     ``(vertices, faces, report)``. Options: those of :func:`parameterize` and
     area_equalization, optimize, relax_iterations, polish_iterations, shape_weight,
-    no_resample."""
+    no_resample, sizing ("uniform", the default, or "curvature[=S]")."""
     v, f, report = _capmesh.remesh(_vertices(vertices), _faces(faces), faces_target, lat_long, progress, **options)
     return v, f, _json.loads(report)
 

@@ -48,6 +48,17 @@ def test_remesh_equals_cli(cli, tmp_path):
     np.testing.assert_array_equal(rf, cli_f)
     np.testing.assert_allclose(rv, cli_v, rtol=0, atol=1e-12)
 
+    # The sizing keyword is the CLI's --sizing.
+    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet", "--sizing", "curvature=2")
+    assert done.returncode == 0, done.stderr
+    curved = json.loads(report.read_text())
+    cv, cf, crep = capmesh.remesh(v, f, faces_target=1000, sizing="curvature=2")
+    assert crep["shape"]["sizing"] == curved["shape"]["sizing"] == "curvature=2"
+    assert crep["quality"]["d_face"] == curved["d_face"] != expected["d_face"]
+    with pytest.raises(capmesh.InputError, match="unknown sizing"):
+        capmesh.remesh(v, f, faces_target=1000, sizing="bumpy")
+    cli_v, cli_f = capmesh.read_mesh(out)
+
     # metrics() is `capmesh metrics --json`.
     done = cli("metrics", OPEN_MESH, out, "--json")
     assert done.returncode == 0, done.stderr

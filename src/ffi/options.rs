@@ -7,6 +7,7 @@ use crate::param::ParamOptions;
 use crate::refine::Smoothing;
 use crate::flatten::closed::DEFAULT_LAMBDA;
 use crate::remesh::shape::ShapeOptions;
+use crate::remesh::sizing::Sizing;
 use crate::remesh::{CapGrid, Optimize, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
 
 /// `capmesh_v1_param_options.domain`: the adaptive cap of the paper (default).
@@ -99,6 +100,10 @@ pub struct capmesh_v1_remesh_options {
     /// 1 = split long and collapse short edges in the shape stage where the map is resolved
     /// at the remesh's scale (default; better angles); 0 = off (the grid's vertex count).
     pub resample: i32,
+    /// Face sizing of the shape stage: 0 = uniform, equal areas (default, the paper's goal);
+    /// a finite strength > 0 = smaller faces where the surface is curved (the CLI's
+    /// `--sizing curvature=S`; `--sizing curvature` is 3).
+    pub sizing_strength: f64,
 }
 
 /// The defaults documented on each field.
@@ -130,6 +135,10 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
         polish_iterations: shape.polish_iterations as u32,
         shape_weight: shape.shape_weight,
         resample: i32::from(shape.resample),
+        sizing_strength: match shape.sizing {
+            Sizing::Uniform => 0.0,
+            Sizing::Curvature { strength } => strength,
+        },
     }
 }
 
@@ -216,7 +225,13 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         1 => true,
         r => return Err(Failure::invalid_argument(format!("resample = {r} is not 0 (off) or 1 (on)"))),
     };
+    let sizing = match finite("sizing_strength", o.sizing_strength)? {
+        s if s == 0.0 => Sizing::Uniform,
+        s if s > 0.0 => Sizing::Curvature { strength: s },
+        s => return Err(Failure::invalid_argument(format!("sizing_strength = {s} is negative; give 0 (uniform) or a curvature strength > 0"))),
+    };
     let shape = ShapeOptions::default()
+        .with_sizing(sizing)
         .with_relax_iterations(o.relax_iterations as usize)
         .with_polish_iterations(o.polish_iterations as usize)
         .with_shape_weight(shape_weight)
