@@ -288,6 +288,7 @@ fn main() {
         ("OBJ, a face index 9 of 3 vertices", Format::Obj, format!("{tri_obj}f 1 2 9\n").into_bytes(), tobj_read),
         ("OBJ, a comment after a vertex", Format::Obj, "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".as_bytes().to_vec(), tobj_read),
         ("OBJ, faces listing vertices out of file order", Format::Obj, format!("{tri_obj}f 3 1 2\n").into_bytes(), tobj_read),
+        ("OBJ, a vertex no face uses (the 4th)", Format::Obj, format!("{tri_obj}v 5 5 5\nf 1 2 3\n").into_bytes(), tobj_read),
         ("OBJ, old-Mac `\\r` line endings", Format::Obj, "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r".as_bytes().to_vec(), tobj_read),
         ("PLY ASCII, a coordinate `one`", Format::Ply, format!("{tri_ply}0 0 0\none 0 0\n0 1 0\n3 0 1 2\n").into_bytes(), v2::read),
         ("PLY ASCII, a face index 9", Format::Ply, format!("{tri_ply}0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n").into_bytes(), v2::read),
