@@ -194,6 +194,28 @@ fn obj_variants() {
     );
 }
 
+/// What the OBJ reader keeps that a reader renumbering vertices by first use (tobj) would not:
+/// vertices in file order whatever order the faces use them in, a vertex no face uses, and a
+/// comment after a record (docs/dependencies.md, issue 30).
+#[test]
+fn obj_keeps_file_vertex_order_and_trailing_comments() {
+    let text = "v 0 0 0 # origin\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nf 3 4 1 # first face\nf 3 1 2\n";
+    let mesh = read_mesh_from_bytes(text.as_bytes(), Format::Obj).unwrap();
+    let mut expected = unit_square().vertices;
+    expected.push([5.0, 5.0, 5.0]);
+    assert_eq!(mesh.vertices, expected);
+    assert_eq!(mesh.faces, vec![[2, 3, 0], [2, 0, 1]]);
+}
+
+/// ASCII PLY values are whitespace-separated tokens: an element may span lines, or share one.
+#[test]
+fn ply_ascii_values_may_span_lines() {
+    let text = "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\n\
+                property double z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n\
+                0 0\n0\n1 0 0 1 1 0\n0 1 0\n3 0 1 2 3\n0 2 3\n";
+    assert_same(&unit_square(), &read_mesh_from_bytes(text.as_bytes(), Format::Ply).unwrap(), "ascii ply layout");
+}
+
 #[test]
 fn off_variants() {
     let variants = [
