@@ -9,18 +9,21 @@ timeout is recorded as such. Results: benchmarks/results/stage_bench.{md,json}. 
 benchmarks/stage_bench.sh, which builds capmesh and the synthetic meshes.
 
     stage_bench.py [--sizes 10k,100k,1m] [--skip-meshlab] [--skip-shared] [--limit SECONDS]
-    stage_bench.py --scale [--limit SECONDS]
+    stage_bench.py --scale [--limit SECONDS] [--max-vertices N]
 
 `--scale` (issue 27) runs only the growth series instead: the 12k and 48k brains of tests/data,
 each midpoint-subdivided once and twice (50k, 194k, 776k vertices: the same surfaces, so the
 same map is expected), and a 1M-vertex closed surface (the bumpy ellipsoid on the geodesic
 sphere), once each without MeshLab; it writes the stage times, peak RSS, mean |d_area| and the
 fitted growth exponent of each stage (least squares of log time on log V over the 48k brain's
-series) to benchmarks/results/stage_bench_scale.{md,json}.
+series) to benchmarks/results/stage_bench_scale.{md,json}. `--max-vertices N` leaves out the
+subdivided and synthetic cases above N vertices (the bundled brains always run; on a shared
+machine the 776k and 1M runs take many minutes).
 """
 
 import argparse
 import datetime
+import gzip
 import json
 import os
 import platform
@@ -290,6 +293,8 @@ def write_scale_report(rows, info, series):
     missing = [n for n in [r[0] for r in info.get("cases", [])] if n not in [r["name"] for r in rows]]
     if missing:
         lines.append("Not run (the run was stopped before them): " + ", ".join(missing) + ".")
+    if info.get("skipped"):
+        lines.append(f"Left out (`--max-vertices {info['max_vertices']}`): " + ", ".join(info["skipped"]) + ".")
     with open(os.path.join(RESULTS, "stage_bench_scale.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -297,21 +302,40 @@ def write_scale_report(rows, info, series):
 def scale(args):
     """The --scale series (see the module docs)."""
     work = tempfile.mkdtemp(prefix="capmesh-scale-")
-    cases = []
+    cases, skipped = [], []
+    limit_v = args.max_vertices
+
+    def fits(name, vertices):
+        if limit_v is None or vertices <= limit_v:
+            return True
+        skipped.append(name)
+        return False
+
     for name in ["closed_brain12k_choi", "closed_brain_choi"]:
         src = os.path.join(DATA, name + ".obj.gz")
+        with gzip.open(src, "rt") as f:
+            base = sum(1 for line in f if line.startswith("v "))
         cases.append((name, src))
         for k in (1, 2):
             if name == "closed_brain12k_choi" and k == 2:
                 continue
+            # A closed genus-0 mesh: each midpoint split gives 4 V - 6 vertices.
+            vertices = base
+            for _ in range(k):
+                vertices = 4 * vertices - 6
+            if not fits(f"{name} x{k}", vertices):
+                continue
             path = os.path.join(work, f"{name}_x{k}.ply")
             subprocess.run([SYNTH, "subdivide", str(k), src, path], check=True, stdout=subprocess.DEVNULL)
             cases.append((f"{name} x{k}", path))
-    path = os.path.join(work, "synthetic_closed_1m.ply")
-    subprocess.run([SYNTH, "geodesic", "1000000", path], check=True, stdout=subprocess.DEVNULL)
-    cases.append(("synthetic closed ellipsoid 1m", path))
+    if fits("synthetic closed ellipsoid 1m", 1000000):
+        path = os.path.join(work, "synthetic_closed_1m.ply")
+        subprocess.run([SYNTH, "geodesic", "1000000", path], check=True, stdout=subprocess.DEVNULL)
+        cases.append(("synthetic closed ellipsoid 1m", path))
     series = ["closed_brain_choi", "closed_brain_choi x1", "closed_brain_choi x2"]
     info = machine()
+    if skipped:
+        info["skipped"], info["max_vertices"] = skipped, limit_v
     info["load_average"] = [os.getloadavg()[0]]
     info["cases"] = [(n, os.path.basename(p)) for n, p in cases]
     rows = []
@@ -332,6 +356,7 @@ def main():
     ap.add_argument("--skip-meshlab", action="store_true")
     ap.add_argument("--skip-shared", action="store_true")
     ap.add_argument("--limit", type=float, default=1200.0, help="seconds per case")
+    ap.add_argument("--max-vertices", type=int, default=None, help="--scale: leave out the cases above this many vertices")
     ap.add_argument("--repeats", type=int, default=3, help="alternating runs per case (the 1M case runs once); medians are reported")
     args = ap.parse_args()
     if args.scale:

@@ -298,6 +298,14 @@ fn max_displacement(a: &[[f64; 2]], b: &[[f64; 2]], radius: f64) -> f64 {
 /// Solve for the `movable` vertices as convex combinations of their rings (mean value
 /// coordinates where the current position allows, uniform otherwise); returns how many got
 /// uniform weights. On a solver failure the positions are left unchanged.
+///
+/// Measured and dropped (issue 27): GMRES (restart 40) preconditioned by the Cholesky factor
+/// of the same system with symmetrised weights `(w_ij + w_ji) / 2`, for regions of 20k
+/// vertices and more. It converged (11-12 steps per coordinate at relative residual 1e-12,
+/// the LU's solution to 4e-12) but was not faster: whole-mesh solves of jittered harmonic
+/// maps took 0.60 / 3.79 / 14.96 CPU s against the LU's 0.50 / 2.51 / 14.00 on the 48k,
+/// 194k and 776k brains (one run each, machine shared). At 776k vertices this LU, called
+/// from the smoothing candidates' region growths, was 36% of the profile.
 fn convex_combination_solve(pos: &mut [[f64; 2]], rings: &[Option<Vec<u32>>], movable: &[bool]) -> usize {
     let n = pos.len();
     let mut index = vec![usize::MAX; n];
