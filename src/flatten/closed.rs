@@ -183,7 +183,7 @@ fn stretch_then_beltrami(
 /// ellipsoid's offer was kept and paid; the default closed schedule factors every other
 /// iteration ([`super::stretch_energy::StretchOptions::refactor_period`]: 5 planned, 6 with
 /// the Beltrami solve), below this, where the offer gained nothing. Open surfaces factor 3
-/// ([`crate::ParamOptions::open_factored_iterations`]), and on the hand, the 101k and the
+/// ([`crate::param::OpenOptions::factored_iterations`]), and on the hand, the 101k and the
 /// 1M disk AMD had the smaller factor anyway.
 const DISSECTION_OFFER_FACTORIZATIONS: usize = 8;
 

@@ -58,7 +58,7 @@ pub struct StretchOptions {
     /// factor every other iteration by the period): with 3 and no period the closed surfaces'
     /// punctured maps, far from converged after 10 iterations, lost (bunny's final mean
     /// |d_area| 0.037 -> 0.042, 48k brain's energy ratio 5.5 -> 6.3); the open surfaces' maps
-    /// use [`crate::param::ParamOptions::open_factored_iterations`] and no period.
+    /// use [`crate::param::OpenOptions::factored_iterations`] and no period.
     pub factored_iterations: usize,
     /// After the first `factored_iterations`, iteration `k` factors its own matrix when `k`
     /// is a multiple of this (0: never), so the iterations between reuse a factorization one
