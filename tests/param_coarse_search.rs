@@ -1,4 +1,4 @@
-//! The radius search on a coarse level (cap::coarse_level) finds a cap as good as the search
+//! The radius search on a coarse level (omt::coarse_level) finds a cap as good as the search
 //! at full resolution, with a fraction of the full-resolution Newton iterations.
 
 mod common;
