@@ -28,8 +28,8 @@ fn main() {
         for lambda in LAMBDAS {
             for refinement in [0, capmesh::param::DEFAULT_AREA_REFINEMENT] {
                 let mut options = ParamOptions::default();
-                options.closed.lambda = lambda;
-                options.area_refinement = refinement;
+                options.closed.flatten.lambda = lambda;
+                options.refinement.area_refinement = refinement;
                 let row = match parameterize(&mesh, &options, &NoProgress) {
                     Ok(map) => {
                         let r = &map.report;

@@ -60,7 +60,7 @@ pub use io::{
     ReadError, VertexAttribute, WriteError,
 };
 pub use mesh::TriMesh;
-pub use param::{parameterize, MapQuality, ParamOptions, ParamReport};
+pub use param::{parameterize, ClosedOptions, MapQuality, OpenOptions, ParamOptions, ParamReport, RefinementOptions, SearchOptions};
 pub use progress::{NoProgress, Progress, Stage};
 pub use remesh::shape::{ShapeOptions, ShapeReport};
 pub use remesh::sizing::Sizing;

@@ -86,7 +86,7 @@ fn over_relaxed_stretch_iteration_needs_fewer_iterations() {
     let (uv, _) = disk_conformal_map(&mesh.vertices, &mesh.faces, &topo.boundary_loops[0], &DiskConformalOptions::default()).unwrap();
     let fixed: Vec<(u32, [f64; 2])> = topo.boundary_loops[0].iter().map(|&b| (b, uv[b as usize])).collect();
     let run = |over_relaxation: f64, max_iterations: usize| {
-        let options = StretchOptions { max_iterations, tolerance: 0.0, over_relaxation, ..StretchOptions::default() };
+        let options = StretchOptions::default().with_max_iterations(max_iterations).with_tolerance(0.0).with_over_relaxation(over_relaxation);
         stretch_energy_map(&mesh.vertices, &mesh.faces, &fixed, &uv, &options).unwrap()
     };
     // The over-relaxed iteration must get lower in 10 iterations than the plain one in 15.
@@ -120,7 +120,7 @@ fn stretch_steps_with_a_reused_factorization_reach_the_same_energy() {
     let weights = capmesh::linalg::cotangent_weights(&mesh.vertices, &mesh.faces);
     let (initial, _) = capmesh::flatten::harmonic::harmonic_extension(mesh.vertices.len(), &mesh.faces, &weights, &fixed).unwrap();
     let run = |factored_iterations: usize| {
-        let options = StretchOptions { tolerance: 0.0, factored_iterations, refactor_period: 0, ..StretchOptions::default() };
+        let options = StretchOptions::default().with_tolerance(0.0).with_factored_iterations(factored_iterations).with_refactor_period(0);
         stretch_energy_map(&mesh.vertices, &mesh.faces, &fixed, &initial, &options).unwrap()
     };
     let (every, every_report) = run(usize::MAX);

@@ -135,13 +135,13 @@ fn backtracking_factor_outside_the_unit_interval_is_refused() {
     let d = StereographicDensity;
     let mut solver = OtSolver::new(&s, r, &d).unwrap();
     for shrink in [0.0, 1.0, 2.0, f64::NAN] {
-        let options = OtOptions { log_step_shrink: shrink, ..OtOptions::default() };
+        let options = OtOptions::default().with_log_step_shrink(shrink);
         let err = solver.solve(&target, &options, &NoProgress).err().unwrap_or_else(|| panic!("shrink {shrink} accepted"));
         assert!(err.to_string().contains("log_step_shrink"), "{err}");
     }
     // Halving, the finer default and anything between converge to the same masses.
     for shrink in [0.5, 0.6, capmesh::omt::options::LOG_STEP_SHRINK] {
-        let options = OtOptions { log_step_shrink: shrink, ..OtOptions::default() };
+        let options = OtOptions::default().with_log_step_shrink(shrink);
         let (cells, report) = OtSolver::new(&s, r, &d).unwrap().solve(&target, &options, &NoProgress).unwrap();
         assert!(report.mass_error <= options.tolerance, "shrink {shrink}: {}", report.mass_error);
         assert_eq!(cells.mass.len(), s.len());
@@ -157,7 +157,7 @@ fn steps_with_the_last_factorization_reach_the_masses_with_fewer_factorizations(
     let target = targets(s.len(), 7);
     let d = StereographicDensity;
     let solve = |stale_step_error: f64| {
-        let options = OtOptions { stale_step_error, ..OtOptions::default() };
+        let options = OtOptions::default().with_stale_step_error(stale_step_error);
         OtSolver::new(&s, r, &d).unwrap().solve(&target, &options, &NoProgress).unwrap()
     };
     let (fresh_cells, fresh) = solve(0.0);

@@ -36,7 +36,7 @@ fn text_and_binary_formats_round_trip() {
     let diag = mesh.bounding_box_diagonal();
     for (file, binary, tol) in [("h.off", false, 1e-7), ("h.ply", true, 1e-7), ("h.obj", false, 1e-7), ("h.stl", true, 1e-7)] {
         let path = tmp(file);
-        openmesh::write(&path, &mesh, &WriteOptions { binary }).unwrap();
+        openmesh::write(&path, &mesh, &WriteOptions::default().with_binary(binary)).unwrap();
         let back = openmesh::read(&path).unwrap();
         assert_eq!(back.n_faces(), mesh.n_faces(), "{file}");
         if file.ends_with(".stl") {

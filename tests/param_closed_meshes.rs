@@ -266,9 +266,9 @@ fn every_other_stretch_factorization_gives_the_same_cap() {
     use capmesh::param::FlattenReport;
     let mesh = read_mesh(&data("closed_brain12k_choi.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
     let alternate = ParamOptions::default();
-    assert_eq!(alternate.closed.stretch.refactor_period, 2);
+    assert_eq!(alternate.closed.flatten.stretch.refactor_period, 2);
     let mut every = alternate.clone();
-    every.closed.stretch.factored_iterations = usize::MAX;
+    every.closed.flatten.stretch.factored_iterations = usize::MAX;
     let (a, b) = (adaptive_with(&mesh, &alternate), adaptive_with(&mesh, &every));
     let stretch = |m: &CapMap| match &m.report.flatten {
         FlattenReport::Closed(c) => c.stretch.clone(),

@@ -1,4 +1,4 @@
-//! The radius search on a coarse level (cap::coarse_level) finds a cap as good as the search
+//! The radius search on a coarse level (omt::coarse_level) finds a cap as good as the search
 //! at full resolution, with a fraction of the full-resolution Newton iterations.
 
 mod common;
@@ -111,7 +111,7 @@ fn final_map_at_the_transport_tolerance_saves_a_newton_step_at_the_same_quality(
     let mesh = read_mesh(&data("open_face_choi.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
     let loose = ParamOptions::default();
     assert_eq!(loose.transport.tolerance, TRANSPORT_TOLERANCE);
-    assert_eq!(loose.search_tolerance, MASS_TOLERANCE);
+    assert_eq!(loose.search.tolerance, MASS_TOLERANCE);
     let mut tight = loose.clone();
     tight.transport.tolerance = MASS_TOLERANCE;
     let a = parameterize(&mesh, &loose, &NoProgress).unwrap_or_else(|e| panic!("{e}")).report;

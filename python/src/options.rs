@@ -28,18 +28,18 @@ fn number<'py, T: FromPyObject<'py>>(name: &str, value: &Bound<'py, PyAny>) -> P
 /// Set one parameterization option; `false` when `name` is not one.
 fn set_map_option(options: &mut ParamOptions, name: &str, value: &Bound<'_, PyAny>) -> PyResult<bool> {
     match name {
-        "initial" => options.open_initial = parsed::<OpenInitialMap>(value)?,
-        "lambda_" | "lambda" => options.closed.lambda = number(name, value)?,
-        "open_lambda" => options.open_lambda = number(name, value)?,
+        "initial" => options.open.initial = parsed::<OpenInitialMap>(value)?,
+        "lambda_" | "lambda" => options.closed.flatten.lambda = number(name, value)?,
+        "open_lambda" => options.open.lambda = number(name, value)?,
         "no_lambda_fallback" => {
             if number::<bool>(name, value)? {
-                options.closed_lambda_fallbacks.clear();
+                options.closed.lambda_fallbacks.clear();
             }
         }
-        "smoothing" => options.smoothing = parsed::<Smoothing>(value)?,
-        "area_refinement" => options.area_refinement = number(name, value)?,
-        "puncture_end" => options.puncture_end = parsed::<PunctureEnd>(value)?,
-        "search_sites" => options.search_sites = number(name, value)?,
+        "smoothing" => options.refinement.smoothing = parsed::<Smoothing>(value)?,
+        "area_refinement" => options.refinement.area_refinement = number(name, value)?,
+        "puncture_end" => options.closed.puncture_end = parsed::<PunctureEnd>(value)?,
+        "search_sites" => options.search.sites = number(name, value)?,
         _ => return Ok(false),
     }
     Ok(true)

@@ -183,10 +183,10 @@ pub(crate) fn param_options(o: &capmesh_v1_param_options) -> Result<ParamOptions
         e => return Err(Failure::invalid_argument(format!("puncture_end = {e} is not 0 (best), 1 (bottom) or 2 (top)"))),
     };
     let mut options = ParamOptions::default().with_domain(domain);
-    options.closed.lambda = lambda;
-    options.smoothing = smoothing;
-    options.area_refinement = o.area_refinement as usize;
-    options.puncture_end = puncture_end;
+    options.closed.flatten.lambda = lambda;
+    options.closed.puncture_end = puncture_end;
+    options.refinement.smoothing = smoothing;
+    options.refinement.area_refinement = o.area_refinement as usize;
     Ok(options)
 }
 

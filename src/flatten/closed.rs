@@ -19,14 +19,16 @@ use std::f64::consts::PI;
 /// The paper's balancing factor between the stretch-energy map and the conformal map.
 pub const DEFAULT_LAMBDA: f64 = 0.2;
 
-/// Options of the closed-surface flattening.
+/// Options of the closed-surface flattening. Build them from [`ClosedFlattenOptions::default`]
+/// with the `with_*` setters: new options may be added without notice.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct ClosedFlattenOptions {
     /// Quasi-conformal composition factor in `[0, 1]`. Default [`DEFAULT_LAMBDA`] (0.2).
     pub lambda: f64,
-    /// Puncture options.
+    /// Puncture options. Default [`PunctureOptions::default`].
     pub puncture: PunctureOptions,
-    /// Stretch energy options.
+    /// Stretch energy options. Default [`StretchOptions::default`].
     pub stretch: StretchOptions,
     /// Solve the two coordinates' right-hand sides of the large systems on separate threads
     /// ([`SpdSolver::set_parallel_columns`]). Default `true`; [`crate::param::PunctureEnd::Best`]
@@ -37,6 +39,32 @@ pub struct ClosedFlattenOptions {
 impl Default for ClosedFlattenOptions {
     fn default() -> Self {
         Self { lambda: DEFAULT_LAMBDA, puncture: PunctureOptions::default(), stretch: StretchOptions::default(), parallel_solves: true }
+    }
+}
+
+impl ClosedFlattenOptions {
+    /// Set [`ClosedFlattenOptions::lambda`] (in `[0, 1]`).
+    pub fn with_lambda(mut self, lambda: f64) -> Self {
+        self.lambda = lambda;
+        self
+    }
+
+    /// Set [`ClosedFlattenOptions::puncture`].
+    pub fn with_puncture(mut self, puncture: PunctureOptions) -> Self {
+        self.puncture = puncture;
+        self
+    }
+
+    /// Set [`ClosedFlattenOptions::stretch`].
+    pub fn with_stretch(mut self, stretch: StretchOptions) -> Self {
+        self.stretch = stretch;
+        self
+    }
+
+    /// Set [`ClosedFlattenOptions::parallel_solves`].
+    pub fn with_parallel_solves(mut self, parallel_solves: bool) -> Self {
+        self.parallel_solves = parallel_solves;
+        self
     }
 }
 
@@ -155,7 +183,7 @@ fn stretch_then_beltrami(
 /// ellipsoid's offer was kept and paid; the default closed schedule factors every other
 /// iteration ([`super::stretch_energy::StretchOptions::refactor_period`]: 5 planned, 6 with
 /// the Beltrami solve), below this, where the offer gained nothing. Open surfaces factor 3
-/// ([`crate::ParamOptions::open_factored_iterations`]), and on the hand, the 101k and the
+/// ([`crate::param::OpenOptions::factored_iterations`]), and on the hand, the 101k and the
 /// 1M disk AMD had the smaller factor anyway.
 const DISSECTION_OFFER_FACTORIZATIONS: usize = 8;
 

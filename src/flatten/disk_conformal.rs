@@ -19,8 +19,10 @@ use crate::linalg::{cotangent_weights, SpdSolver};
 use crate::mesh::geometry::{norm, sub, triangle_angles, vertex_areas};
 use std::f64::consts::PI;
 
-/// Options of the disk conformal map.
+/// Options of the disk conformal map. Build them from [`DiskConformalOptions::default`] with
+/// the `with_*` setters: new options may be added without notice.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct DiskConformalOptions {
     /// Fixed-point iterations of the boundary scaling. Default 30.
     pub max_iterations: usize,
@@ -33,6 +35,26 @@ pub struct DiskConformalOptions {
 impl Default for DiskConformalOptions {
     fn default() -> Self {
         Self { max_iterations: 30, tolerance: 1e-6, center: true }
+    }
+}
+
+impl DiskConformalOptions {
+    /// Set [`DiskConformalOptions::max_iterations`].
+    pub fn with_max_iterations(mut self, max_iterations: usize) -> Self {
+        self.max_iterations = max_iterations;
+        self
+    }
+
+    /// Set [`DiskConformalOptions::tolerance`].
+    pub fn with_tolerance(mut self, tolerance: f64) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// Set [`DiskConformalOptions::center`].
+    pub fn with_center(mut self, center: bool) -> Self {
+        self.center = center;
+        self
     }
 }
 

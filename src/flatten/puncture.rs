@@ -19,8 +19,10 @@ use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 /// matrix from looping).
 const MAX_EIGEN_ITERATIONS: usize = 100;
 
-/// Options of the puncture.
+/// Options of the puncture. Build them from [`PunctureOptions::default`] with the `with_*`
+/// setters: new options may be added without notice.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct PunctureOptions {
     /// Accept a quadrilateral whose side and diagonal ratios are at most this. Default 1.3.
     pub max_ratio: f64,
@@ -39,6 +41,38 @@ pub struct PunctureOptions {
 impl Default for PunctureOptions {
     fn default() -> Self {
         Self { max_ratio: 1.3, candidates: 500, acceptable_ratio: 2.0, reach: 0.25, other_end: false }
+    }
+}
+
+impl PunctureOptions {
+    /// Set [`PunctureOptions::max_ratio`].
+    pub fn with_max_ratio(mut self, max_ratio: f64) -> Self {
+        self.max_ratio = max_ratio;
+        self
+    }
+
+    /// Set [`PunctureOptions::candidates`].
+    pub fn with_candidates(mut self, candidates: usize) -> Self {
+        self.candidates = candidates;
+        self
+    }
+
+    /// Set [`PunctureOptions::acceptable_ratio`].
+    pub fn with_acceptable_ratio(mut self, acceptable_ratio: f64) -> Self {
+        self.acceptable_ratio = acceptable_ratio;
+        self
+    }
+
+    /// Set [`PunctureOptions::reach`].
+    pub fn with_reach(mut self, reach: f64) -> Self {
+        self.reach = reach;
+        self
+    }
+
+    /// Set [`PunctureOptions::other_end`].
+    pub fn with_other_end(mut self, other_end: bool) -> Self {
+        self.other_end = other_end;
+        self
     }
 }
 

@@ -32,8 +32,10 @@ use faer::sparse::SparseColMat;
 use rayon::prelude::*;
 use crate::mesh::geometry::{folded_faces, signed_area_2d, triangle_area};
 
-/// Options of the stretch energy minimisation.
+/// Options of the stretch energy minimisation. Build them from [`StretchOptions::default`]
+/// with the `with_*` setters: new options may be added without notice.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct StretchOptions {
     /// Maximum fixed-point iterations. Default 10: each costs a sparse factorization, or two
     /// triangular solves with a reused one (see [`StretchOptions::refactor_period`]). With
@@ -56,7 +58,7 @@ pub struct StretchOptions {
     /// factor every other iteration by the period): with 3 and no period the closed surfaces'
     /// punctured maps, far from converged after 10 iterations, lost (bunny's final mean
     /// |d_area| 0.037 -> 0.042, 48k brain's energy ratio 5.5 -> 6.3); the open surfaces' maps
-    /// use [`crate::param::ParamOptions::open_factored_iterations`] and no period.
+    /// use [`crate::param::OpenOptions::factored_iterations`] and no period.
     pub factored_iterations: usize,
     /// After the first `factored_iterations`, iteration `k` factors its own matrix when `k`
     /// is a multiple of this (0: never), so the iterations between reuse a factorization one
@@ -69,6 +71,36 @@ pub struct StretchOptions {
 }
 
 impl StretchOptions {
+    /// Set [`StretchOptions::max_iterations`].
+    pub fn with_max_iterations(mut self, max_iterations: usize) -> Self {
+        self.max_iterations = max_iterations;
+        self
+    }
+
+    /// Set [`StretchOptions::tolerance`].
+    pub fn with_tolerance(mut self, tolerance: f64) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// Set [`StretchOptions::over_relaxation`] (1: the plain iteration).
+    pub fn with_over_relaxation(mut self, over_relaxation: f64) -> Self {
+        self.over_relaxation = over_relaxation;
+        self
+    }
+
+    /// Set [`StretchOptions::factored_iterations`].
+    pub fn with_factored_iterations(mut self, factored_iterations: usize) -> Self {
+        self.factored_iterations = factored_iterations;
+        self
+    }
+
+    /// Set [`StretchOptions::refactor_period`] (0: never refactor after `factored_iterations`).
+    pub fn with_refactor_period(mut self, refactor_period: usize) -> Self {
+        self.refactor_period = refactor_period;
+        self
+    }
+
     /// How many of the `max_iterations` factor their own matrix when every stale step is
     /// kept (each rejected one adds a factorization).
     pub fn planned_factorizations(&self) -> usize {

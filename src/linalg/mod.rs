@@ -4,7 +4,7 @@
 pub(crate) mod conjugate_gradient;
 pub(crate) mod graph_matrix;
 pub(crate) mod laplacian;
-pub mod nested_dissection;
+pub(crate) mod nested_dissection;
 pub(crate) mod sparse;
 
 pub use conjugate_gradient::{jacobi_cg2, CgOutcome};

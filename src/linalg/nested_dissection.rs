@@ -31,14 +31,6 @@ pub const LEAF: usize = 8;
 /// work is shorter than handing it over.
 const PARALLEL_PART: usize = 4096;
 
-/// The elimination order of the `n = points.len()` unknowns (positions in `D` dimensions) of
-/// a symmetric pattern given by its columns (`col_ptr`, `row_idx`, either or both
-/// triangles): `order[k]` is the unknown eliminated `k`-th. Row indices `>= n` are ignored.
-/// One call of [`Dissection::new`] then [`Dissection::order`].
-pub fn nested_dissection<const D: usize>(points: &[[f64; D]], col_ptr: &[usize], row_idx: &[usize]) -> Vec<usize> {
-    Dissection::new(points).order(col_ptr, row_idx)
-}
-
 /// The geometric half of a nested dissection, computed once for fixed positions: the
 /// points in an order where every part (a range of it, starting with the whole) is split
 /// at its middle into the halves below and above the median along the longest side of the
@@ -72,15 +64,12 @@ impl Dissection {
         self.rank.len()
     }
 
-    /// Whether there are no unknowns.
-    pub fn is_empty(&self) -> bool {
-        self.rank.is_empty()
-    }
-
     /// The elimination order for the pattern (`col_ptr`, `row_idx`) of `self.len()`
     /// unknowns: at each split the smaller of the two one-sided separators (the unknowns of
     /// one half, not in an earlier separator, with such a neighbour in the other half) is
-    /// eliminated after both halves, which are ordered the same way.
+    /// eliminated after both halves, which are ordered the same way. `order[k]` is the unknown
+    /// eliminated `k`-th; the pattern may hold either or both triangles, and row indices
+    /// `>= self.len()` are ignored.
     pub fn order(&self, col_ptr: &[usize], row_idx: &[usize]) -> Vec<usize> {
         let n = self.len();
         let mut taken = vec![false; n];
@@ -253,7 +242,7 @@ mod tests {
     #[test]
     fn the_order_is_a_permutation_with_separators_last() {
         let (points, col_ptr, row_idx) = grid(30);
-        let order = nested_dissection(&points, &col_ptr, &row_idx);
+        let order = Dissection::new(&points).order(&col_ptr, &row_idx);
         let mut seen = vec![false; points.len()];
         for &v in &order {
             assert!(!seen[v], "{v} twice");
@@ -271,7 +260,7 @@ mod tests {
     fn fill_on_a_grid_is_that_of_a_dissection_not_of_the_natural_order() {
         let m = 40;
         let (points, col_ptr, row_idx) = grid(m);
-        let nd = factor_entries(&col_ptr, &row_idx, &nested_dissection(&points, &col_ptr, &row_idx));
+        let nd = factor_entries(&col_ptr, &row_idx, &Dissection::new(&points).order(&col_ptr, &row_idx));
         let natural = factor_entries(&col_ptr, &row_idx, &(0..m * m).collect::<Vec<_>>());
         // Natural (banded) order: about m^3 = 64000 entries; nested dissection O(n log n).
         assert!(natural > 60_000, "{natural}");
@@ -352,7 +341,7 @@ mod tests {
         // A grid bent into a half cylinder: the longest side of the box is along the axis.
         let (flat, col_ptr, row_idx) = grid(20);
         let points: Vec<[f64; 3]> = flat.iter().map(|p| [p[0], 10.0 * (p[1] / 6.4).cos(), 10.0 * (p[1] / 6.4).sin()]).collect();
-        let order = nested_dissection(&points, &col_ptr, &row_idx);
+        let order = Dissection::new(&points).order(&col_ptr, &row_idx);
         let mut sorted = order.clone();
         sorted.sort_unstable();
         assert_eq!(sorted, (0..400).collect::<Vec<_>>());

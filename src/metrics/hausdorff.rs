@@ -7,18 +7,9 @@
 //! lower bound of the exact one-sided Hausdorff distance of the continuous surfaces; the two
 //! meet as the faces get small against the surface's features.
 
-use super::closest::SurfaceDistance;
-use super::sampling::{distances, face_samples};
-use crate::mesh::TriMesh;
-
 /// Largest of `d` (0 when empty).
 pub fn max_distance(d: &[f64]) -> f64 {
     d.iter().cloned().fold(0.0, f64::max)
-}
-
-/// One-sided Hausdorff distance from the face samples of `from` to the surface `to`.
-pub fn one_sided_hausdorff(from: &TriMesh, to: &SurfaceDistance) -> f64 {
-    max_distance(&distances(&face_samples(from), to))
 }
 
 #[cfg(test)]
@@ -27,6 +18,15 @@ mod tests {
     use crate::metrics::closest::closest_on_triangle;
     use crate::mesh::geometry::{norm, sub};
     use crate::mesh::shapes::{grid_disk, icosphere};
+    use crate::metrics::closest::SurfaceDistance;
+    use crate::metrics::sampling::{distances, face_samples};
+    use crate::mesh::TriMesh;
+
+    /// The largest distance from the face samples of `from` to `to`, as the remesh metrics
+    /// take it ([`crate::metrics::remeshing`]).
+    fn one_sided_hausdorff(from: &TriMesh, to: &SurfaceDistance) -> f64 {
+        max_distance(&distances(&face_samples(from), to))
+    }
 
     /// A disk lifted by `h` above itself is `h` away everywhere.
     #[test]

@@ -4,7 +4,7 @@
 pub mod angles;
 pub mod closest;
 pub(crate) mod distortion;
-pub mod hausdorff;
+pub(crate) mod hausdorff;
 pub(crate) mod remeshing;
 pub(crate) mod sampling;
 pub(crate) mod self_intersection;

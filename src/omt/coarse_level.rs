@@ -33,10 +33,6 @@ pub struct CoarseLevel {
     pub on_boundary: Vec<bool>,
     /// Target masses `P^T tau` of the coarse sites.
     pub masses: Vec<f64>,
-    /// The fine vertex of each coarse site.
-    pub fine_vertex: Vec<u32>,
-    /// Ball radius, in graph hops, of the covering.
-    pub hops: usize,
     /// Per fine vertex, up to three `(coarse site, weight)` pairs (unused slots weigh 0).
     prolongation: Vec<[(u32, f64); 3]>,
 }
@@ -49,10 +45,9 @@ impl CoarseLevel {
     pub fn build(disk_map: &[[f64; 2]], faces: &[[u32; 3]], on_boundary: &[bool], target: &[f64], max_sites: usize) -> Option<Self> {
         let n = disk_map.len();
         let neighbors = neighbors_of_faces(n, faces);
-        let (mut seeds, mut hops) = (Vec::new(), 0);
+        let mut seeds = Vec::new();
         for h in 1..=64 {
             seeds = cover(&neighbors, on_boundary, h);
-            hops = h;
             if seeds.len() <= max_sites.max(on_boundary.iter().filter(|b| **b).count()) {
                 break;
             }
@@ -104,17 +99,12 @@ impl CoarseLevel {
         }
         let sites = seeds.iter().map(|&v| disk_map[v as usize]).collect();
         let on_boundary = seeds.iter().map(|&v| on_boundary[v as usize]).collect();
-        Some(Self { sites, on_boundary, masses, fine_vertex: seeds, hops, prolongation })
+        Some(Self { sites, on_boundary, masses, prolongation })
     }
 
     /// Number of coarse sites.
     pub fn len(&self) -> usize {
         self.sites.len()
-    }
-
-    /// Whether there are no coarse sites (never, for a built level).
-    pub fn is_empty(&self) -> bool {
-        self.sites.is_empty()
     }
 
     /// Positions of every fine vertex from positions of the coarse sites (`P x`).
@@ -221,13 +211,17 @@ mod tests {
         assert!(level.len() <= 600 && level.len() > rim, "{} sites, {} on the rim", level.len(), rim);
         assert!(level.len() < mesh.n_vertices() / 4);
         // Every boundary vertex is a site, flagged as such.
-        let boundary_sites = level.fine_vertex.iter().filter(|&&v| boundary[v as usize]).count();
-        assert_eq!(boundary_sites, rim);
         assert_eq!(level.on_boundary.iter().filter(|b| **b).count(), rim);
-        // Every vertex is within `hops` edges of a site.
-        let mut is_site = vec![false; mesh.n_vertices()];
-        level.fine_vertex.iter().for_each(|&v| is_site[v as usize] = true);
-        assert!(within_rings(&is_site, &mesh.faces, level.hops).iter().all(|&w| w));
+        // The covering the level is built on: every boundary vertex is a seed, and every
+        // vertex is within `hops` edges of one.
+        let neighbors = neighbors_of_faces(mesh.n_vertices(), &mesh.faces);
+        for hops in 1..=4 {
+            let seeds = cover(&neighbors, &boundary, hops);
+            let mut is_site = vec![false; mesh.n_vertices()];
+            seeds.iter().for_each(|&v| is_site[v as usize] = true);
+            assert!(boundary.iter().zip(&is_site).all(|(b, s)| !b || *s), "hops {hops}: a boundary vertex is not a seed");
+            assert!(within_rings(&is_site, &mesh.faces, hops).iter().all(|&w| w), "hops {hops}: a vertex is farther from every seed");
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! exact density integrals ([`density`]) and a damped Newton driver ([`newton`]).
 
 pub mod cells;
-pub mod coarse_level;
+pub(crate) mod coarse_level;
 pub(crate) mod density;
 pub(crate) mod newton;
 pub mod options;

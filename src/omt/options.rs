@@ -5,8 +5,10 @@ use super::triangulation::TriangulationError;
 use crate::linalg::SolveError;
 use crate::progress::Cancelled;
 
-/// Options of the transport solver.
+/// Options of the transport solver. Build them from [`OtOptions::default`] with the `with_*`
+/// setters (or by setting fields): new options may be added without notice.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct OtOptions {
     /// Stop when `sum |m_i - tau_i| / sum tau_i` is below this. Default `1e-7`.
     pub tolerance: f64,
@@ -48,6 +50,30 @@ impl OtOptions {
     /// Set [`OtOptions::max_iterations`].
     pub fn with_max_iterations(mut self, n: usize) -> Self {
         self.max_iterations = n;
+        self
+    }
+
+    /// Set [`OtOptions::min_step`].
+    pub fn with_min_step(mut self, min_step: f64) -> Self {
+        self.min_step = min_step;
+        self
+    }
+
+    /// Set [`OtOptions::log_step_error`] (`f64::INFINITY`: plain steps only).
+    pub fn with_log_step_error(mut self, log_step_error: f64) -> Self {
+        self.log_step_error = log_step_error;
+        self
+    }
+
+    /// Set [`OtOptions::log_step_shrink`].
+    pub fn with_log_step_shrink(mut self, log_step_shrink: f64) -> Self {
+        self.log_step_shrink = log_step_shrink;
+        self
+    }
+
+    /// Set [`OtOptions::stale_step_error`] (0: factor every step).
+    pub fn with_stale_step_error(mut self, stale_step_error: f64) -> Self {
+        self.stale_step_error = stale_step_error;
         self
     }
 }

@@ -47,12 +47,22 @@ pub enum OpenMeshError {
     },
 }
 
-/// Options of [`write()`].
+/// Options of [`write()`]. Build them from [`WriteOptions::default`] with the `with_*` setters:
+/// new options may be added without notice.
 #[derive(Debug, Clone, Default)]
+#[non_exhaustive]
 pub struct WriteOptions {
     /// Binary output for the formats that have one (`.ply`, `.stl`, `.off`; `.om` is always
     /// binary). Default `false`.
     pub binary: bool,
+}
+
+impl WriteOptions {
+    /// Set [`WriteOptions::binary`].
+    pub fn with_binary(mut self, binary: bool) -> Self {
+        self.binary = binary;
+        self
+    }
 }
 
 fn utf8(path: &Path) -> Result<&str, OpenMeshError> {

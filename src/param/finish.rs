@@ -22,7 +22,7 @@ use crate::refine::smoothing::{smooth_centroid_map, PUNCTURE_HELD_RINGS};
 use std::time::Instant;
 
 /// [`super::parameterize`] of the prepared `mesh` with the puncture end fixed by
-/// `options.closed.puncture`: the radius search, then [`finish`].
+/// `options.closed.flatten.puncture`: the radius search, then [`finish`].
 pub(crate) fn parameterize_once(mesh: &TriMesh, prepared: &Prepared, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
     let searched = search_radius(prepared, options, false, progress)?;
     finish(mesh, searched, options, progress)
@@ -77,13 +77,13 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
     let t_reg = Instant::now();
     let cot = cotangent_weights(&work.vertices, &faces);
     let held = if kind == SurfaceKind::ClosedSphere { within_rings(&on_boundary, &faces, PUNCTURE_HELD_RINGS) } else { on_boundary.clone() };
-    let chosen = smooth_centroid_map(&transported, &work.vertices, &faces, &cot, &on_boundary, &held, radius, options.smoothing, &to_cap).map_err(OmtError::Linear)?;
+    let chosen = smooth_centroid_map(&transported, &work.vertices, &faces, &cot, &on_boundary, &held, radius, options.refinement.smoothing, &to_cap).map_err(OmtError::Linear)?;
     let (kappa, mut plane, untangle_report, trials) = (chosen.kappa, chosen.positions, chosen.untangle, chosen.trials);
     let lift_one = |q: [f64; 2]| if options.domain == Domain::Disk { [q[0], q[1], 0.0] } else { inverse_stereographic(q) };
     let smoothing_seconds = t_reg.elapsed().as_secs_f64();
     progress::check(progress, Stage::Project, 0.0, "area refinement")?;
     let t_refine = Instant::now();
-    let refinement = refine_areas(&mut plane, &work.vertices, &faces, &on_boundary, &lift_one, RefineOptions { sweeps: options.area_refinement, ..Default::default() });
+    let refinement = refine_areas(&mut plane, &work.vertices, &faces, &on_boundary, &lift_one, RefineOptions::default().with_sweeps(options.refinement.area_refinement));
     let refine_seconds = t_refine.elapsed().as_secs_f64();
     progress::check(progress, Stage::Project, 0.0, "inverse stereographic projection")?;
     let cap_work = to_cap(&plane);

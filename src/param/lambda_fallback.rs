@@ -14,7 +14,7 @@
 //! vertices across the disk. A
 //! larger `lambda` keeps more of the stretch-energy map, which spreads the area instead of
 //! squeezing it, so [`super::parameterize()`] maps a closed surface again with the next value
-//! of [`ParamOptions::closed_lambda_fallbacks`] when its transport stalls or its map is poor
+//! of [`super::ClosedOptions::lambda_fallbacks`] when its transport stalls or its map is poor
 //! (mean `|d_area|` above [`POOR_MAP_AREA_DISTORTION`]), keeps the first map that is not
 //! poor, else the least distorted, and lists the other attempts in
 //! [`super::ParamReport::lambda_fallbacks`]. Meshes that map well at the first `lambda` (all
@@ -38,7 +38,7 @@ pub(super) fn is_precision_failure(error: &Error) -> bool {
 
 /// The next `lambda` to try after `failed`, if any.
 pub(super) fn next_lambda(options: &ParamOptions, failed: f64) -> Option<f64> {
-    options.closed_lambda_fallbacks.iter().copied().filter(|&l| l > failed && l <= 1.0).reduce(f64::min)
+    options.closed.lambda_fallbacks.iter().copied().filter(|&l| l > failed && l <= 1.0).reduce(f64::min)
 }
 
 #[cfg(test)]
@@ -53,11 +53,11 @@ mod tests {
         assert_eq!(next_lambda(&options, 0.5), Some(0.8));
         assert_eq!(next_lambda(&options, 0.8), Some(1.0));
         assert_eq!(next_lambda(&options, 1.0), None);
-        options.closed_lambda_fallbacks = vec![1.5, 0.9, 0.3];
+        options.closed.lambda_fallbacks = vec![1.5, 0.9, 0.3];
         assert_eq!(next_lambda(&options, 0.2), Some(0.3));
         assert_eq!(next_lambda(&options, 0.3), Some(0.9));
         assert_eq!(next_lambda(&options, 0.9), None, "values above 1 are not lambdas");
-        options.closed_lambda_fallbacks.clear();
+        options.closed.lambda_fallbacks.clear();
         assert_eq!(next_lambda(&options, 0.2), None);
     }
 

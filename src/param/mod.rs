@@ -26,8 +26,9 @@ pub(crate) mod search;
 pub use crate::cap::CapMap;
 pub use lambda_fallback::POOR_MAP_AREA_DISTORTION;
 pub use options::{
-    OpenInitialMap, ParamOptions, PunctureEnd, DEFAULT_AREA_REFINEMENT, DEFAULT_LAMBDA_FALLBACKS, DEFAULT_OPEN_FACTORED_ITERATIONS,
-    DEFAULT_OPEN_LAMBDA, DEFAULT_SEARCH_SITES, MASS_TOLERANCE, TRANSPORT_TOLERANCE,
+    ClosedOptions, OpenInitialMap, OpenOptions, ParamOptions, PunctureEnd, RefinementOptions, SearchOptions, DEFAULT_AREA_REFINEMENT,
+    DEFAULT_LAMBDA_FALLBACKS, DEFAULT_OPEN_FACTORED_ITERATIONS, DEFAULT_OPEN_LAMBDA, DEFAULT_SEARCH_SITES, MASS_TOLERANCE,
+    TRANSPORT_TOLERANCE,
 };
 pub use report::{FlattenReport, LambdaFallback, MapQuality, ParamReport, PunctureTrial, RadiusSample};
 pub use search::{search_level_sites, MIN_SEARCH_SITES, SEARCH_RATIO, SMALL_SEARCH_RATIO};
@@ -44,7 +45,7 @@ use std::time::Instant;
 ///
 /// A closed surface whose transport stalls (its initial map squeezes part of the surface
 /// below double precision) or whose map is poor is mapped again with the next of
-/// [`ParamOptions::closed_lambda_fallbacks`] (see [`lambda_fallback`]);
+/// [`ClosedOptions::lambda_fallbacks`] (see [`lambda_fallback`]);
 /// [`ParamReport::lambda_fallbacks`] lists the attempts not kept, `report.flatten` the
 /// `lambda` used, and `report.seconds` then covers every attempt.
 ///
@@ -66,7 +67,7 @@ fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress:
     let mut failure: Option<Error> = None;
     let mut attempt = options.clone();
     loop {
-        let lambda = attempt.closed.lambda;
+        let lambda = attempt.closed.flatten.lambda;
         match parameterize_at_lambda(mesh, &prepared, &attempt, progress) {
             Ok(map) if !is_poor(&map) => return Ok(with_fallbacks(map, attempts, start)),
             Ok(map) => {
@@ -83,7 +84,7 @@ fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress:
             Err(e) => return Err(e),
         }
         match next_lambda(options, lambda).filter(|_| prepared.kind == SurfaceKind::ClosedSphere) {
-            Some(next) => attempt.closed.lambda = next,
+            Some(next) => attempt.closed.flatten.lambda = next,
             None => {
                 return match (best, failure) {
                     (Some((kept, map)), _) => {
@@ -114,14 +115,14 @@ fn with_fallbacks(mut map: CapMap, fallbacks: Vec<LambdaFallback>, start: Instan
     map
 }
 
-/// [`parameterize`] at `options.closed.lambda`, without fallbacks.
+/// [`parameterize`] at `options.closed.flatten.lambda`, without fallbacks.
 fn parameterize_at_lambda(mesh: &TriMesh, prepared: &Prepared, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
     let at = |other_end: bool| {
         let mut o = options.clone();
-        o.closed.puncture.other_end = other_end;
+        o.closed.flatten.puncture.other_end = other_end;
         o
     };
-    match options.puncture_end {
+    match options.closed.puncture_end {
         PunctureEnd::Bottom => parameterize_once(mesh, prepared, &at(false), progress),
         PunctureEnd::Top => parameterize_once(mesh, prepared, &at(true), progress),
         PunctureEnd::Best => puncture_end::parameterize_best_end(mesh, prepared, &at(false), &at(true), progress),

@@ -28,7 +28,7 @@ pub(crate) fn parameterize_best_end(mesh: &TriMesh, prepared: &Prepared, bottom:
     // both flatten, each solves its two right-hand sides in one pass (the cores are busy).
     let one_pass = |o: &ParamOptions| {
         let mut o = o.clone();
-        o.closed.parallel_solves = false;
+        o.closed.flatten.parallel_solves = false;
         o
     };
     let (first, second) = rayon::join(|| search_radius(prepared, &one_pass(bottom), true, progress), || search_radius(prepared, &one_pass(top), true, progress));

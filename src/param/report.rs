@@ -140,7 +140,7 @@ pub struct ParamReport {
     /// Both ends tried when the puncture end is [`super::PunctureEnd::Best`] (empty otherwise).
     pub puncture_trials: Vec<PunctureTrial>,
     /// The composition factors tried for a closed surface and not kept (its transport
-    /// stalled or its map was poor, [`super::ParamOptions::closed_lambda_fallbacks`]); `flatten`
+    /// stalled or its map was poor, [`super::ClosedOptions::lambda_fallbacks`]); `flatten`
     /// has the `lambda` kept. Empty when the first worked.
     pub lambda_fallbacks: Vec<LambdaFallback>,
     /// Wall-clock seconds of the whole parameterization (for [`super::PunctureEnd::Best`] both

@@ -8,9 +8,8 @@ use crate::cap::brent;
 use crate::cap::domain::{Domain, MAX_RADIUS, MIN_RADIUS};
 use crate::cap::stereographic::{inverse_stereographic, radius_of_z_star, z_star_of_radius};
 use crate::error::Error;
-use crate::flatten::closed::{composite_disk_map, flatten_closed, ClosedFlattenOptions};
+use crate::flatten::closed::{composite_disk_map, flatten_closed};
 use crate::flatten::puncture::Puncture;
-use crate::flatten::stretch_energy::StretchOptions;
 use crate::flatten::disk_conformal_map;
 use crate::mesh::geometry::vertex_areas;
 use crate::mesh::SurfaceKind;
@@ -43,7 +42,7 @@ pub const SMALL_SEARCH_RATIO: usize = 4;
 pub const MIN_SEARCH_SITES: usize = 250;
 
 /// The most transport sites of the radius search's coarse level for a mesh of `n` vertices
-/// (see [`ParamOptions::search_sites`]), or `None` when it searches at full resolution:
+/// (see [`super::SearchOptions::sites`]), or `None` when it searches at full resolution:
 /// `max(search_sites, n / SEARCH_RATIO)` sites, for a closed surface
 /// `max(min(search_sites, max(n / SMALL_SEARCH_RATIO, MIN_SEARCH_SITES)), n / SEARCH_RATIO)`,
 /// when that is fewer than half the vertices; `None` for `search_sites = 0`.
@@ -115,18 +114,18 @@ pub(crate) fn search_radius<'p>(prepared: &'p Prepared, options: &ParamOptions, 
     let (faces, boundary, disk, flatten_report, puncture) = match kind {
         SurfaceKind::OpenDisk => {
             let boundary = topology.boundary_loops[0].clone();
-            if options.open_initial == OpenInitialMap::Composite {
-                let stretch = StretchOptions { factored_iterations: options.open_factored_iterations, refactor_period: 0, ..options.closed.stretch.clone() };
-                let composite = ClosedFlattenOptions { lambda: options.open_lambda, stretch, ..options.closed.clone() };
+            if options.open.initial == OpenInitialMap::Composite {
+                let stretch = options.closed.flatten.stretch.clone().with_factored_iterations(options.open.factored_iterations).with_refactor_period(0);
+                let composite = options.closed.flatten.clone().with_lambda(options.open.lambda).with_stretch(stretch);
                 let (disk, rep) = composite_disk_map(&work.vertices, &work.faces, &boundary, &composite)?;
                 (work.faces.clone(), boundary, disk, FlattenReport::Closed(rep), None)
             } else {
-                let (disk, rep) = disk_conformal_map(&work.vertices, &work.faces, &boundary, &options.flatten)?;
+                let (disk, rep) = disk_conformal_map(&work.vertices, &work.faces, &boundary, &options.open.conformal)?;
                 (work.faces.clone(), boundary, disk, FlattenReport::Open(rep), None)
             }
         }
         SurfaceKind::ClosedSphere => {
-            let flat = flatten_closed(work, &options.closed)?;
+            let flat = flatten_closed(work, &options.closed.flatten)?;
             (flat.faces, flat.puncture.quad.to_vec(), flat.uv, FlattenReport::Closed(flat.report), Some(flat.puncture))
         }
     };
@@ -145,13 +144,13 @@ pub(crate) fn search_radius<'p>(prepared: &'p Prepared, options: &ParamOptions, 
     let (radius, transported) = match options.domain {
         Domain::Disk => (1.0, None),
         Domain::Adaptive => {
-            let coarse = search_level_sites(disk.len(), options.search_sites, kind == SurfaceKind::ClosedSphere).and_then(|sites| CoarseLevel::build(&disk, &faces, &on_boundary, &target, sites));
+            let coarse = search_level_sites(disk.len(), options.search.sites, kind == SurfaceKind::ClosedSphere).and_then(|sites| CoarseLevel::build(&disk, &faces, &on_boundary, &target, sites));
             let mut coarse_transport = coarse.as_ref().map(|c| PlanarTransport::new(&c.sites, &c.on_boundary, &c.masses, density, options.transport.clone()));
             search_sites = coarse.as_ref().map(CoarseLevel::len);
             let mut best: Option<SearchBest> = None;
             let mut evals = 0usize;
-            let max_evals = options.max_search_evaluations;
-            let search_tolerance = options.search_tolerance;
+            let max_evals = options.search.max_evaluations;
+            let search_tolerance = options.search.tolerance;
             // Closed surfaces search over w = atanh(Z*) (= -ln r): their optimum is at the
             // lower bound (the cap becomes the whole sphere but for the punctured quad), and
             // golden steps towards it shrink the distance geometrically in r rather than in
@@ -190,7 +189,7 @@ pub(crate) fn search_radius<'p>(prepared: &'p Prepared, options: &ParamOptions, 
                 Ok(e)
             };
             let (z_lo, z_hi) = (z_star_of_radius(MAX_RADIUS), z_star_of_radius(MIN_RADIUS));
-            let z_tolerance = options.z_tolerance;
+            let z_tolerance = options.search.z_tolerance;
             if in_atanh {
                 // Their energy falls all the way to the bound on every shared closed mesh:
                 // the search starts there and ends after two solves when the energy rises

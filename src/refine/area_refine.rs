@@ -34,8 +34,10 @@ pub struct AreaRefineReport {
 /// Sweeps of the parameterization's refinement by default.
 pub const DEFAULT_SWEEPS: usize = 30;
 
-/// How many sweeps, and how far each step goes.
+/// How many sweeps, and how far each step goes. Build them from [`RefineOptions::default`] with
+/// the `with_*` setters: new options may be added without notice.
 #[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
 pub struct RefineOptions {
     /// Sweeps at most. Default [`DEFAULT_SWEEPS`].
     pub sweeps: usize,
@@ -59,6 +61,24 @@ impl Default for RefineOptions {
 }
 
 impl RefineOptions {
+    /// Set [`RefineOptions::sweeps`].
+    pub fn with_sweeps(mut self, sweeps: usize) -> Self {
+        self.sweeps = sweeps;
+        self
+    }
+
+    /// Set [`RefineOptions::over_relaxation`] (1: plain Gauss-Seidel).
+    pub fn with_over_relaxation(mut self, over_relaxation: f64) -> Self {
+        self.over_relaxation = over_relaxation;
+        self
+    }
+
+    /// Set [`RefineOptions::active_move`] (0: step every vertex in every sweep).
+    pub fn with_active_move(mut self, active_move: f64) -> Self {
+        self.active_move = active_move;
+        self
+    }
+
     /// `sweeps` of plain (not over-relaxed) Gauss-Seidel.
     pub fn plain(sweeps: usize) -> Self {
         Self { sweeps, over_relaxation: 1.0, ..Default::default() }

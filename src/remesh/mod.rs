@@ -4,7 +4,7 @@
 pub(crate) mod equalize;
 pub(crate) mod grid;
 pub(crate) mod locate;
-pub mod pullback;
+pub(crate) mod pullback;
 pub mod shape;
 pub(crate) mod sizing;
 pub(crate) mod transfer;

@@ -4,19 +4,13 @@
 
 use super::grid::ClosedCapGrid;
 use super::locate::Locator;
-use crate::cap::{stereographic, CapMap};
+use crate::cap::CapMap;
 use crate::mesh::TriMesh;
 use rayon::prelude::*;
 
-/// Positions on the surface of the cap points `cap`, for a surface whose vertices sit at
-/// `plane` (same numbering as `surface.vertices`) in the disk. `None` if the planar mesh is
-/// empty.
-pub fn pull_back(surface: &TriMesh, plane: &[[f64; 2]], cap: &[[f64; 3]]) -> Option<Vec<[f64; 3]>> {
-    let points: Vec<[f64; 2]> = cap.iter().map(|&x| stereographic(x)).collect();
-    pull_back_planar(surface, plane, &points)
-}
-
-/// [`pull_back`] of points already in the plane of `plane`.
+/// Positions on the surface of the planar `points` (cap points by stereographic projection),
+/// for a surface whose vertices sit at `plane` (same numbering as `surface.vertices`) in the
+/// disk. `None` if a point lies in no face.
 pub fn pull_back_planar(surface: &TriMesh, plane: &[[f64; 2]], points: &[[f64; 2]]) -> Option<Vec<[f64; 3]>> {
     let locator = Locator::new(plane, &surface.faces);
     points
@@ -31,17 +25,10 @@ pub fn pull_back_planar(surface: &TriMesh, plane: &[[f64; 2]], points: &[[f64; 2
 }
 
 /// Positions on a closed surface of the closed cap grid `grid`: cap vertices (the rim
-/// included) through the plane as in [`pull_back`], restricted to the faces that are not
-/// punctured; bottom-disk vertices by locating them, in the `(X, Y)` plane of the bottom, in
-/// the two punctured faces whose corners `map` put on the rim. `None` if a part is empty.
-pub fn pull_back_closed(surface: &TriMesh, map: &CapMap, grid: &ClosedCapGrid) -> Option<Vec<[f64; 3]>> {
-    let split = grid.first_bottom_vertex.min(grid.mesh.vertices.len());
-    let top_points: Vec<[f64; 2]> = grid.mesh.vertices[..split].iter().map(|&x| stereographic(x)).collect();
-    pull_back_closed_from(surface, map, grid, &top_points)
-}
-
-/// [`pull_back_closed`] with the cap vertices' points in the plane given (`top_points`, one
-/// per vertex before `grid.first_bottom_vertex`).
+/// included) at their points in the plane (`top_points`, one per vertex before
+/// `grid.first_bottom_vertex`) as in [`pull_back_planar`], restricted to the faces that are
+/// not punctured; bottom-disk vertices by locating them, in the `(X, Y)` plane of the bottom,
+/// in the two punctured faces whose corners `map` put on the rim. `None` if a part is empty.
 pub fn pull_back_closed_from(surface: &TriMesh, map: &CapMap, grid: &ClosedCapGrid, top_points: &[[f64; 2]]) -> Option<Vec<[f64; 3]>> {
     let (bottom, top): (Vec<usize>, Vec<usize>) = (0..surface.n_faces()).partition(|f| map.bottom_faces.contains(f));
     let top_mesh = TriMesh::new(surface.vertices.clone(), top.iter().map(|&f| surface.faces[f]).collect());

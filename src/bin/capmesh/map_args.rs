@@ -51,15 +51,15 @@ impl MapArgs {
     /// Set these options on `options` (its domain is left as it is; `allow_poor_map` is the
     /// command's, not the library's).
     pub fn apply(&self, options: &mut ParamOptions) {
-        options.open_initial = self.initial;
-        options.closed.lambda = self.lambda;
-        options.open_lambda = self.open_lambda;
+        options.open.initial = self.initial;
+        options.open.lambda = self.open_lambda;
+        options.closed.flatten.lambda = self.lambda;
+        options.closed.puncture_end = self.puncture_end;
         if self.no_lambda_fallback {
-            options.closed_lambda_fallbacks.clear();
+            options.closed.lambda_fallbacks.clear();
         }
-        options.smoothing = self.smoothing;
-        options.area_refinement = self.area_refinement;
-        options.puncture_end = self.puncture_end;
-        options.search_sites = self.search_sites;
+        options.search.sites = self.search_sites;
+        options.refinement.smoothing = self.smoothing;
+        options.refinement.area_refinement = self.area_refinement;
     }
 }
