@@ -8,13 +8,13 @@ use capmesh::mesh::{validate, SurfaceKind};
 use capmesh::metrics::face_area_deviation;
 use capmesh::progress::NoProgress;
 use capmesh::remesh::{remesh, CapGrid, Optimize, RemeshOptions};
-use std::path::Path;
+
+mod common;
 
 /// `max_relative_to_input`: the largest accepted ratio of the output's `d_face_relative` to
 /// the input's (below 1 means more uniform than the input).
 fn check(name: &str, max_relative_to_input: f64) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name);
-    let mesh = read_mesh(&path).unwrap();
+    let mesh = read_mesh(&common::data(name)).unwrap();
     let target = 5000;
     let (out, rep) = remesh(&mesh, &RemeshOptions::default().with_grid(CapGrid::Uniform { faces: target }), &NoProgress)
         .unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -101,7 +101,7 @@ fn closed_bird_skull() {
 
 #[test]
 fn closed_lat_long_is_watertight() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/closed_bunny_npm.obj.gz");
+    let path = common::data("closed_bunny_npm.obj.gz");
     let mesh = read_mesh(&path).unwrap();
     let (out, _) = remesh(&mesh, &RemeshOptions::default().with_grid(CapGrid::LatLong { rings: 40, sectors: 80 }), &NoProgress).unwrap();
     assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
@@ -112,7 +112,7 @@ fn closed_lat_long_is_watertight() {
 
 #[test]
 fn lat_long_grid_has_rings_times_sectors_layout() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/open_meg_helmet_babysquid_mne.obj.gz");
+    let path = common::data("open_meg_helmet_babysquid_mne.obj.gz");
     let mesh = read_mesh(&path).unwrap();
     let (rings, sectors) = (12, 24);
     let (out, _) = remesh(&mesh, &RemeshOptions::default().with_grid(CapGrid::LatLong { rings, sectors }), &NoProgress).unwrap();
@@ -131,7 +131,7 @@ fn lat_long_grid_has_rings_times_sectors_layout() {
 /// 930). The rim band now goes onto the polygon.
 #[test]
 fn coarse_inputs_remesh_without_zero_area_faces() {
-    let mut holed = read_mesh(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/closed_bunny_npm.obj.gz")).unwrap();
+    let mut holed = read_mesh(&common::data("closed_bunny_npm.obj.gz")).unwrap();
     holed.faces.remove(0);
     let square = capmesh::TriMesh::new(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.1]], vec![[0, 1, 2], [1, 3, 2]]);
     let cases = [
@@ -158,7 +158,7 @@ fn coarse_inputs_remesh_without_zero_area_faces() {
 #[test]
 fn equalization_runs_on_closed_surfaces() {
     for name in ["closed_bunny_npm.obj.gz", "closed_brain12k_choi.obj.gz"] {
-        let mesh = read_mesh(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)).unwrap();
+        let mesh = read_mesh(&common::data(name)).unwrap();
         let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 3000 }).with_optimize(Optimize::Area);
         let (_, rep) = remesh(&mesh, &options, &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"));
         let eq = &rep.area_equalization;
