@@ -7,9 +7,10 @@
 //! bent by more than the crease bound (creases of the input are kept). Each accepted flip
 //! raises the pair's smallest angle, so a pass cannot cycle; passes repeat until none flips.
 
-use super::state::{edge_faces, smallest_angle, third, Shaping};
+use super::state::{edge_faces, smallest_angle_tan, third, Shaping};
 use crate::mesh::fasthash::FastMap;
 use crate::mesh::geometry::{cross, dot, norm, sub};
+use rayon::prelude::*;
 
 /// Smallest gain of the pair's smallest angle (radians) for a flip: ties are not flipped back
 /// and forth.
@@ -26,16 +27,19 @@ const MAX_PASSES: usize = 8;
 /// [`MAX_PASSES`] passes); `crease` is the largest angle (radians) between the normals of the
 /// two faces, before and after, of a flipped edge. Returns the number of flips.
 pub(crate) fn flip_to_max_min_angle(mesh: &mut Shaping, crease: f64) -> usize {
-    flip(mesh, crease, Criterion::MinAngle)
+    Flipper::new(mesh, crease).run(mesh, Criterion::MinAngle)
 }
 
-/// Flip edges of `mesh` while a flip brings the valences of its four vertices closer to the
-/// regular ones (6 inside, 4 on the boundary) without making the pair's smallest angle fall
-/// below [`VALENCE_FLOOR_DEG`] or below what it was (as in isotropic remeshing, Botsch and
-/// Kobbelt 2004); the sum of squared valence excesses falls with every flip, so a pass
-/// cannot cycle. Returns the number of flips.
-pub(crate) fn flip_to_regular_valence(mesh: &mut Shaping, crease: f64) -> usize {
-    flip(mesh, crease, Criterion::Valence)
+/// A relaxation iteration's flips, sharing one edge table: when `valence`, first flip edges
+/// while a flip brings the valences of its four vertices closer to the regular ones (6
+/// inside, 4 on the boundary) without making the pair's smallest angle fall below
+/// [`VALENCE_FLOOR_DEG`] or below what it was (as in isotropic remeshing, Botsch and Kobbelt
+/// 2004; the sum of squared valence excesses falls with every flip, so a pass cannot cycle);
+/// then [`flip_to_max_min_angle`]. Returns the number of flips.
+pub(crate) fn flip_valence_then_angle(mesh: &mut Shaping, crease: f64, valence: bool) -> usize {
+    let mut flipper = Flipper::new(mesh, crease);
+    let by_valence = if valence { flipper.run(mesh, Criterion::Valence) } else { 0 };
+    by_valence + flipper.run(mesh, Criterion::MinAngle)
 }
 
 /// Smallest angle (degrees) a valence flip may leave in its pair (unless it was smaller).
@@ -48,89 +52,148 @@ enum Criterion {
     Valence,
 }
 
-fn flip(mesh: &mut Shaping, crease: f64, criterion: Criterion) -> usize {
-    let n = mesh.plane.len();
-    let mut valence = vec![0i32; n];
-    for f in &mesh.faces {
-        for &v in f {
-            valence[v as usize] += 1;
+/// The flips' bookkeeping, kept up to date across flips (vertex positions do not change
+/// while it lives).
+struct Flipper {
+    /// Each undirected edge: its two faces (the one where it runs a -> b, then b -> a).
+    edges: FastMap<(u32, u32), [u32; 2]>,
+    /// Faces at each vertex.
+    valence: Vec<i32>,
+    /// Regular face count at each vertex: 6 inside, 3 on the boundary.
+    regular: Vec<i32>,
+    /// Tangent of each face's smallest angle ([`smallest_angle_tan`]).
+    face_tan: Vec<f64>,
+    cos_crease: f64,
+}
+
+impl Flipper {
+    fn new(mesh: &Shaping, crease: f64) -> Self {
+        let n = mesh.plane.len();
+        let mut valence = vec![0i32; n];
+        for f in &mesh.faces {
+            for &v in f {
+                valence[v as usize] += 1;
+            }
         }
+        let edges = edge_faces(&mesh.faces);
+        // Regular valence: 6 inside, 4 on the boundary (a boundary vertex has one face fewer
+        // than neighbours, so count faces: 6 inside, 3 on the boundary).
+        let mut regular = vec![6i32; n];
+        for (&(a, b), f) in &edges {
+            if f[0] == u32::MAX || f[1] == u32::MAX {
+                regular[a as usize] = 3;
+                regular[b as usize] = 3;
+            }
+        }
+        let face_tan = mesh.faces.iter().map(|f| face_tan(mesh, *f)).collect();
+        Self { edges, valence, regular, face_tan, cos_crease: crease.cos() }
     }
-    // Each undirected edge: its two faces (the one where it runs a -> b, then b -> a).
-    let mut edges = edge_faces(&mesh.faces);
-    // Regular valence: 6 inside, 4 on the boundary (a boundary vertex has one face fewer
-    // than neighbours, so count faces: 6 inside, 3 on the boundary).
-    let mut regular = vec![6i32; n];
-    for (&(a, b), f) in &edges {
-        if f[0] == u32::MAX || f[1] == u32::MAX {
-            regular[a as usize] = 3;
-            regular[b as usize] = 3;
-        }
-    }
-    let mut keys: Vec<(u32, u32)> = edges.iter().filter(|(_, f)| f[0] != u32::MAX && f[1] != u32::MAX).map(|(&k, _)| k).collect();
-    keys.sort_unstable();
-    let cos_crease = crease.cos();
-    let mut flips = 0;
-    let mut changed: Vec<(u32, u32)> = Vec::new();
-    for _ in 0..MAX_PASSES {
-        let mut this_pass = 0;
-        for &(a, b) in &keys {
-            let Some(&[t1, t2]) = edges.get(&(a, b)) else { continue };
-            if t1 == u32::MAX || t2 == u32::MAX {
-                continue;
-            }
-            // t1 runs a -> b, so t1 = (a, b, c); t2 runs b -> a, so t2 = (b, a, d).
-            let c = third(mesh.faces[t1 as usize], a, b);
-            let d = third(mesh.faces[t2 as usize], b, a);
-            let (Some(c), Some(d)) = (c, d) else { continue };
-            if c == d || edges.contains_key(&(c.min(d), c.max(d))) || ![a, b, c, d].iter().all(|&v| mesh.planar(v)) {
-                continue;
-            }
-            let better = match criterion {
-                Criterion::MinAngle => improves(mesh, [a, b, c, d], cos_crease, None),
-                Criterion::Valence => {
-                    let dev = |v: u32, change: i32| {
-                        let e = valence[v as usize] + change - regular[v as usize];
-                        e * e
-                    };
-                    let before = dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0);
-                    let after = dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1);
-                    after < before && improves(mesh, [a, b, c, d], cos_crease, Some(VALENCE_FLOOR_DEG.to_radians()))
-                }
-            };
-            if !better {
-                continue;
-            }
-            valence[a as usize] -= 1;
-            valence[b as usize] -= 1;
-            valence[c as usize] += 1;
-            valence[d as usize] += 1;
-            // New faces (c, a, d) and (d, b, c), replacing t1 and t2.
-            mesh.faces[t1 as usize] = [c, a, d];
-            mesh.faces[t2 as usize] = [d, b, c];
-            edges.remove(&(a, b));
-            // t2 = (d, b, c) runs c -> d, t1 = (c, a, d) runs d -> c.
-            edges.insert((c.min(d), c.max(d)), if c < d { [t2, t1] } else { [t1, t2] });
-            // Edge (b, c) moved from t1 to t2, edge (a, d) from t2 to t1.
-            reassign(&mut edges, b, c, t1, t2);
-            reassign(&mut edges, a, d, t2, t1);
-            this_pass += 1;
-            // The next pass visits the edges of the flipped pairs only: an angle verdict
-            // depends on the pair alone (a valence verdict also on the four valences, whose
-            // other edges wait for the next call).
-            for (u, v) in [(a, c), (c, b), (b, d), (d, a), (c, d)] {
-                changed.push((u.min(v), u.max(v)));
-            }
-        }
-        flips += this_pass;
-        if this_pass == 0 {
-            break;
-        }
-        keys = std::mem::take(&mut changed);
+
+    /// Passes of flips by `criterion` until none flips ([`MAX_PASSES`] at most).
+    fn run(&mut self, mesh: &mut Shaping, criterion: Criterion) -> usize {
+        let mut keys: Vec<(u32, u32)> = self.edges.iter().filter(|(_, f)| f[0] != u32::MAX && f[1] != u32::MAX).map(|(&k, _)| k).collect();
         keys.sort_unstable();
-        keys.dedup();
+        // The first pass visits every edge: its verdicts are judged in parallel on the mesh
+        // as it is before the pass. A verdict depends only on the pair's two faces and its
+        // four vertices' positions and valences, which no earlier flip of the pass changed
+        // when none of the four vertices took part in one (a flip changes only faces whose
+        // corners are its own four vertices): then the verdict judged ahead is the one the
+        // sweep would judge, and the flips are those of a sequential pass.
+        let ahead: Vec<bool> = {
+            let this = &*self;
+            let mesh = &*mesh;
+            keys.par_iter().map(|&(a, b)| this.pair(mesh, a, b).is_some_and(|(t1, t2, c, d)| this.better(mesh, criterion, [a, b, c, d], [t1, t2]))).collect()
+        };
+        let mut touched = vec![false; mesh.plane.len()];
+        let mut flips = 0;
+        let mut changed: Vec<(u32, u32)> = Vec::new();
+        for pass in 0..MAX_PASSES {
+            let mut this_pass = 0;
+            for (i, &(a, b)) in keys.iter().enumerate() {
+                let Some((t1, t2, c, d)) = self.pair(mesh, a, b) else { continue };
+                if c == d || self.edges.contains_key(&(c.min(d), c.max(d))) || ![a, b, c, d].iter().all(|&v| mesh.planar(v)) {
+                    continue;
+                }
+                let judged_ahead = pass == 0 && [a, b, c, d].iter().all(|&v| !touched[v as usize]);
+                let better = if judged_ahead { ahead[i] } else { self.better(mesh, criterion, [a, b, c, d], [t1, t2]) };
+                if !better {
+                    continue;
+                }
+                if pass == 0 {
+                    for v in [a, b, c, d] {
+                        touched[v as usize] = true;
+                    }
+                }
+                self.valence[a as usize] -= 1;
+                self.valence[b as usize] -= 1;
+                self.valence[c as usize] += 1;
+                self.valence[d as usize] += 1;
+                // New faces (c, a, d) and (d, b, c), replacing t1 and t2.
+                mesh.faces[t1 as usize] = [c, a, d];
+                mesh.faces[t2 as usize] = [d, b, c];
+                self.face_tan[t1 as usize] = face_tan(mesh, [c, a, d]);
+                self.face_tan[t2 as usize] = face_tan(mesh, [d, b, c]);
+                self.edges.remove(&(a, b));
+                // t2 = (d, b, c) runs c -> d, t1 = (c, a, d) runs d -> c.
+                self.edges.insert((c.min(d), c.max(d)), if c < d { [t2, t1] } else { [t1, t2] });
+                // Edge (b, c) moved from t1 to t2, edge (a, d) from t2 to t1.
+                reassign(&mut self.edges, b, c, t1, t2);
+                reassign(&mut self.edges, a, d, t2, t1);
+                this_pass += 1;
+                // The next pass visits the edges of the flipped pairs only: an angle verdict
+                // depends on the pair alone (a valence verdict also on the four valences, whose
+                // other edges wait for the next call).
+                for (u, v) in [(a, c), (c, b), (b, d), (d, a), (c, d)] {
+                    changed.push((u.min(v), u.max(v)));
+                }
+            }
+            flips += this_pass;
+            if this_pass == 0 {
+                break;
+            }
+            keys = std::mem::take(&mut changed);
+            keys.sort_unstable();
+            keys.dedup();
+        }
+        flips
     }
-    flips
+
+    /// The faces `(t1, t2)` of interior edge `(a, b)` (`t1 = (a, b, c)`, `t2 = (b, a, d)`) and
+    /// its opposite corners `c`, `d`; `None` on the boundary.
+    fn pair(&self, mesh: &Shaping, a: u32, b: u32) -> Option<(u32, u32, u32, u32)> {
+        let &[t1, t2] = self.edges.get(&(a, b))?;
+        if t1 == u32::MAX || t2 == u32::MAX {
+            return None;
+        }
+        let c = third(mesh.faces[t1 as usize], a, b)?;
+        let d = third(mesh.faces[t2 as usize], b, a)?;
+        Some((t1, t2, c, d))
+    }
+
+    /// Whether flipping the edge `(a, b)` of the pair `[t1, t2]` with opposite corners `c`,
+    /// `d` improves what `criterion` asks for (the edge's existence and planarity checked
+    /// by the caller).
+    fn better(&self, mesh: &Shaping, criterion: Criterion, [a, b, c, d]: [u32; 4], [t1, t2]: [u32; 2]) -> bool {
+        let old = self.face_tan[t1 as usize].min(self.face_tan[t2 as usize]);
+        match criterion {
+            Criterion::MinAngle => improves(mesh, [a, b, c, d], old, self.cos_crease, None),
+            Criterion::Valence => {
+                let dev = |v: u32, change: i32| {
+                    let e = self.valence[v as usize] + change - self.regular[v as usize];
+                    e * e
+                };
+                let before = dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0);
+                let after = dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1);
+                after < before && improves(mesh, [a, b, c, d], old, self.cos_crease, Some(VALENCE_FLOOR_DEG.to_radians().tan()))
+            }
+        }
+    }
+}
+
+/// [`smallest_angle_tan`] of face `f` of `mesh`.
+fn face_tan(mesh: &Shaping, f: [u32; 3]) -> f64 {
+    let [a, b, c] = f.map(|v| mesh.position[v as usize]);
+    smallest_angle_tan(a, b, c)
 }
 
 /// Replace face `from` by `to` among the faces of edge `(u, v)`.
@@ -145,16 +208,17 @@ fn reassign(edges: &mut FastMap<(u32, u32), [u32; 2]>, u: u32, v: u32, from: u32
 }
 
 /// Whether flipping edge `(a, b)` of faces `(a, b, c)`, `(b, a, d)` to `(c, a, d)`, `(d, b, c)`
-/// raises the smallest 3-D angle (or, with a `floor`, leaves it at least at the floor or at
-/// what it was), keeps the planar orientation and stays within the crease bound.
-fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], cos_crease: f64, floor: Option<f64>) -> bool {
+/// raises the smallest 3-D angle, whose tangent is `old_tan` before the flip (or, with a
+/// `floor_tan`, leaves its tangent at least at the floor's or at the old one), keeps the planar
+/// orientation and stays within the crease bound.
+fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], old_tan: f64, cos_crease: f64, floor_tan: Option<f64>) -> bool {
     let x = |v: u32| mesh.position[v as usize];
     let p = |v: u32| mesh.plane[v as usize];
-    let old = smallest_angle(x(a), x(b), x(c)).min(smallest_angle(x(b), x(a), x(d)));
-    let new = smallest_angle(x(c), x(a), x(d)).min(smallest_angle(x(d), x(b), x(c)));
-    let enough = match floor {
-        None => new > old + MIN_GAIN,
-        Some(floor) => new >= old.min(floor),
+    let new_tan = smallest_angle_tan(x(c), x(a), x(d)).min(smallest_angle_tan(x(d), x(b), x(c)));
+    let enough = match floor_tan {
+        // The angles themselves only for the few pairs that gain.
+        None => new_tan > old_tan && new_tan.atan() > old_tan.atan() + MIN_GAIN,
+        Some(floor) => new_tan >= old_tan.min(floor),
     };
     if !enough {
         return false;

@@ -219,8 +219,10 @@ pub(crate) fn optimize_shape(
     // The target edge length: equilateral faces of the pulled-back mesh's mean area.
     let target_len = target_length(&mesh);
     let (faces0, mut len_factor) = (mesh.faces.len(), 1.0f64);
+    let mut cycle: Option<(Vec<u32>, Vec<u32>)> = None;
     for it in 0..lloyd + options.polish_iterations {
-        if options.resample && it < lloyd / 2 && target_len > 0.0 {
+        let resampled = options.resample && it < lloyd / 2 && target_len > 0.0;
+        if resampled {
             // Splits and collapses balance at a slightly different count than asked for:
             // the target length follows the face count back to the pulled-back mesh's.
             len_factor *= (mesh.faces.len() as f64 / faces0 as f64).sqrt();
@@ -232,11 +234,13 @@ pub(crate) fn optimize_shape(
             let rho = vertex_densities(&mesh, input.lift, input.density);
             report.collapses += resample::collapse_short_edges(&mut mesh, &incidence, input.lift, resample::COLLAPSE * len, resample::SPLIT * len, &length_factor(&rho));
         }
-        if it < lloyd {
-            report.flips += flips::flip_to_regular_valence(&mut mesh, crease);
+        report.flips += flips::flip_valence_then_angle(&mut mesh, crease, it < lloyd);
+        // An open surface's boundary cycle changes with splits and collapses only (a flipped
+        // edge is an interior one); a closed surface's rim does not slide.
+        if input.track.is_some() && (cycle.is_none() || resampled) {
+            cycle = Some(boundary::boundary_cycle(&mesh.faces, mesh.plane.len()));
         }
-        let (next, prev) = boundary::boundary_cycle(&mesh.faces, mesh.plane.len());
-        report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
+        let (next, prev) = cycle.as_ref().map_or((&[][..], &[][..]), |(n, p)| (&n[..], &p[..]));
         let incidence = mesh.incidence();
         let classes = mesh.color_classes(&incidence);
         // Face targets: areas proportional to 1 / density with the mesh's total area.

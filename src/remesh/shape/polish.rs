@@ -22,6 +22,21 @@ const EQUILATERAL: f64 = 6.928203230275509;
 /// The residuals of one face `(x, a, b)` (corner `x` moving): area and shape, and their
 /// gradients with respect to `x`. `None` for a face without area.
 fn residuals(x: [f64; 3], a: [f64; 3], b: [f64; 3], ln_target: f64, sqrt_mu: f64) -> Option<([f64; 2], [[f64; 3]; 2])> {
+    let r = residual_values(x, a, b, ln_target, sqrt_mu)?;
+    let n = cross(sub(a, x), sub(b, x));
+    let nn = dot(n, n);
+    let (ea, eb, ab) = (sub(x, a), sub(x, b), sub(a, b));
+    let l = dot(ea, ea) + dot(eb, eb) + dot(ab, ab);
+    // grad ln A = n x (b - a) / |n|^2; grad ln L = 2 ((x - a) + (x - b)) / L.
+    let g_area = cross(n, sub(b, a)).map(|c| c / nn);
+    let g_len: [f64; 3] = std::array::from_fn(|k| 2.0 * (ea[k] + eb[k]) / l);
+    let g_shape: [f64; 3] = std::array::from_fn(|k| sqrt_mu * (g_len[k] - g_area[k]));
+    Some((r, [g_area, g_shape]))
+}
+
+/// The residuals of [`residuals`] without their gradients (the trial steps need only the
+/// energy).
+fn residual_values(x: [f64; 3], a: [f64; 3], b: [f64; 3], ln_target: f64, sqrt_mu: f64) -> Option<[f64; 2]> {
     let n = cross(sub(a, x), sub(b, x));
     let nn = dot(n, n);
     if !(nn > 0.0) {
@@ -30,13 +45,7 @@ fn residuals(x: [f64; 3], a: [f64; 3], b: [f64; 3], ln_target: f64, sqrt_mu: f64
     let area = 0.5 * nn.sqrt();
     let (ea, eb, ab) = (sub(x, a), sub(x, b), sub(a, b));
     let l = dot(ea, ea) + dot(eb, eb) + dot(ab, ab);
-    // grad ln A = n x (b - a) / |n|^2; grad ln L = 2 ((x - a) + (x - b)) / L.
-    let g_area = cross(n, sub(b, a)).map(|c| c / nn);
-    let g_len: [f64; 3] = std::array::from_fn(|k| 2.0 * (ea[k] + eb[k]) / l);
-    let r_area = area.ln() - ln_target;
-    let r_shape = sqrt_mu * (l / (EQUILATERAL * area)).ln();
-    let g_shape: [f64; 3] = std::array::from_fn(|k| sqrt_mu * (g_len[k] - g_area[k]));
-    Some(([r_area, r_shape], [g_area, g_shape]))
+    Some([area.ln() - ln_target, sqrt_mu * (l / (EQUILATERAL * area)).ln()])
 }
 
 /// The local energy of vertex `v` at surface point `x`.
@@ -44,7 +53,7 @@ fn local_energy(mesh: &Shaping, ring: &[u32], v: usize, x: [f64; 3], ln_target: 
     let mut e = 0.0;
     for &t in ring {
         let (a, b) = others(mesh, t, v);
-        let (r, _) = residuals(x, a, b, ln_target(t as usize), sqrt_mu)?;
+        let r = residual_values(x, a, b, ln_target(t as usize), sqrt_mu)?;
         e += r[0] * r[0] + r[1] * r[1];
     }
     Some(e)
