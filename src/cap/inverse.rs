@@ -247,7 +247,7 @@ impl<'a> InverseMap<'a> {
     }
 
     /// The faces outside the punctured quad (all faces of an open surface), in the numbering
-    /// of [`InverseMap::locate_plane_near`]'s face indices.
+    /// of `InverseMap::locate_plane_near`'s face indices.
     pub fn top_faces(&self) -> &[usize] {
         &self.top_faces
     }

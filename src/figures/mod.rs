@@ -7,7 +7,7 @@
 //! writes `DIR/index.md`, linking the figures under the report's headline numbers.
 //!
 //! Charts are drawn with plotters, as PNG and SVG; the shaded views by this module's own
-//! z-buffer rasterizer ([`raster`]: orthographic, flat Lambert shading, three fixed views) as
+//! z-buffer rasterizer (`raster`: orthographic, flat Lambert shading, three fixed views) as
 //! PNG. Text uses a bundled font, so nothing is needed from the system. Everything is drawn
 //! single-threaded in a fixed order and encoded with fixed settings: the same input gives the
 //! same bytes.

@@ -19,7 +19,7 @@ use crate::remesh::grid::uniform_cap;
 pub const MAX_RESAMPLE_FACES: usize = 20_000_000;
 
 /// The order-`fit.order` representation evaluated on a uniform cap mesh of about `faces`
-/// faces (at least 1, at most [`MAX_RESAMPLE_FACES`]).
+/// faces (at least 1, at most `MAX_RESAMPLE_FACES`).
 pub fn resample(fit: &HarmonicFit, faces: usize) -> Result<TriMesh, HarmonicsError> {
     if faces == 0 || faces > MAX_RESAMPLE_FACES {
         return Err(HarmonicsError::InvalidResample { faces, max: MAX_RESAMPLE_FACES });

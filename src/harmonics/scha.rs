@@ -42,7 +42,7 @@
 //! against 0.0166 with the whole sphere; docs/harmonics.md).
 //!
 //! The index of `S_k^m` is `k^2 + k + m`, as for the adaptive harmonics, so the first
-//! `(k + 1)^2` functions are the order-`k` basis and one QR fits every order ([`super::fit`]).
+//! `(k + 1)^2` functions are the order-`k` basis and one QR fits every order ([`super::fit`](mod@super::fit)).
 //!
 //! # Points
 //!

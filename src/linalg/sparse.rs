@@ -166,8 +166,8 @@ type AnalysedPattern = (Vec<usize>, Vec<usize>, SymbolicCholesky<usize>);
 /// change too much while the steps are damped, so the analysis was redone anyway); a nested
 /// dissection by breadth-first level structures (George 1973), which gave a larger factor on
 /// irregular meshes and took longer to compute. A geometric one on known positions
-/// ([`SpdSolver::set_positions`], [`super::nested_dissection`]) is cheap enough to pay on the
-/// large transport systems (see [`crate::omt::newton::NESTED_DISSECTION_SITES`]).
+/// ([`SpdSolver::set_positions`], `super::nested_dissection`) is cheap enough to pay on the
+/// large transport systems (see `crate::omt::newton::NESTED_DISSECTION_SITES`).
 #[derive(Default, Clone)]
 pub struct SpdSolver {
     symbolic: Option<Arc<AnalysedPattern>>,

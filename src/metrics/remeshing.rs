@@ -43,7 +43,7 @@ pub struct RemeshMetrics {
     /// Faces of the remeshed surface with (relatively) zero area
     /// ([`crate::mesh::repair::zero_area_faces`] at its default tolerance). capmesh's remeshes
     /// have none on the shared meshes and on coarse inputs (tests/remesh.rs; see
-    /// [`crate::remesh::pullback::rim_band_into_polygon`] for where they came from).
+    /// `crate::remesh::pullback::rim_band_into_polygon` for where they came from).
     pub zero_area_faces: usize,
     /// Mean over the remesh's faces of each face's smallest angle, degrees (60 for an
     /// equilateral mesh).
@@ -56,7 +56,7 @@ pub struct RemeshMetrics {
     pub share_interior_valence_6: f64,
     /// Faces of the remesh that intersect a face other than an edge neighbour (MeshLab's
     /// `compute_selection_by_self_intersections_per_face`, see
-    /// [`crate::metrics::self_intersection`]).
+    /// `crate::metrics::self_intersection`).
     pub self_intersecting_faces: usize,
     /// The same count for the input mesh.
     pub self_intersecting_faces_input: usize,

@@ -1,5 +1,5 @@
 //! The transport solver's options, report and errors, with the defaults of its step
-//! choices and why they are what they are (the solver is [`super::newton`]).
+//! choices and why they are what they are (the solver is `super::newton`).
 
 use super::triangulation::TriangulationError;
 use crate::linalg::SolveError;

@@ -5,14 +5,14 @@
 //! `h_r` on the disk of radius `r` with the stereographic density; `r*` minimises the
 //! area-normalised mean of `|mu|^2` of `(h_r o r g)^-1` (Eq. 12) by Brent's method over `Z*`
 //! in `[-0.995, 0.995]` (closed surfaces: run in the variable `atanh(Z*)`, tolerance on
-//! `Z*`; large meshes: on a coarse level of transport sites, [`crate::omt::coarse_level`], with
+//! `Z*`; large meshes: on a coarse level of transport sites, `crate::omt::coarse_level`, with
 //! only `r*` solved at full resolution); then the inverse stereographic projection.
 //!
-//! The steps, one file each: [`options`], `prepare` (check, weld and classify the mesh
+//! The steps, one file each: `options`, `prepare` (check, weld and classify the mesh
 //! once), `search` (initial disk map and radius search), `finish` (transport at `r*`,
 //! smoothing, fold repair, area refinement, report), `puncture_end` (both ends of a
-//! closed surface) and [`lambda_fallback`] (a larger `lambda` when the transport fails);
-//! [`report`] holds what they measure. The files import downwards only: this one calls
+//! closed surface) and `lambda_fallback` (a larger `lambda` when the transport fails);
+//! `report` holds what they measure. The files import downwards only: this one calls
 //! the fallbacks and the puncture ends, which call `search` and `finish`.
 
 pub(crate) mod finish;
@@ -45,7 +45,7 @@ use std::time::Instant;
 ///
 /// A closed surface whose transport stalls (its initial map squeezes part of the surface
 /// below double precision) or whose map is poor is mapped again with the next of
-/// [`ClosedOptions::lambda_fallbacks`] (see [`lambda_fallback`]);
+/// [`ClosedOptions::lambda_fallbacks`] (see `lambda_fallback`);
 /// [`ParamReport::lambda_fallbacks`] lists the attempts not kept, `report.flatten` the
 /// `lambda` used, and `report.seconds` then covers every attempt.
 ///

@@ -115,7 +115,7 @@ pub struct ParamReport {
     pub smoothing_kappa: f64,
     /// Every smoothing strength tried, with its measured area distortion.
     pub smoothing_trials: Vec<SmoothingTrial>,
-    /// The repair of folded faces after transport (see [`crate::refine::untangle`]).
+    /// The repair of folded faces after transport (see `crate::refine::untangle`).
     pub untangle: UntangleReport,
     /// The face-level area refinement (see [`crate::refine::area_refine`]).
     pub area_refinement: AreaRefineReport,

@@ -109,7 +109,7 @@ pub struct RemeshOptions {
     /// Parameterization options (adaptive cap by default).
     pub param: ParamOptions,
     /// Sweeps of the area equalization of the pulled-back mesh with [`Optimize::Area`] (see
-    /// [`equalize`]; after the shape stage, [`shape::ShapeOptions::area_sweeps`]); 0 pulls
+    /// `equalize`; after the shape stage, [`shape::ShapeOptions::area_sweeps`]); 0 pulls
     /// the cap mesh back as the paper does. Default [`DEFAULT_AREA_EQUALIZATION`].
     pub area_equalization: usize,
     /// What is optimised after the pull-back. Default [`Optimize::ShapeAndArea`]; the

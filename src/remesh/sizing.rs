@@ -23,7 +23,7 @@ pub enum Sizing {
     Uniform,
     /// Density `1 + strength * k * L` (see the module docs); `strength` finite and > 0.
     Curvature {
-        /// The weight of the curvature term ([`DEFAULT_CURVATURE_STRENGTH`] on the command
+        /// The weight of the curvature term (`DEFAULT_CURVATURE_STRENGTH` on the command
         /// line): on the shared meshes 3 lowered the sampled surface distance by up to 36%
         /// where 1 lowered it by up to 21% (docs/method.md, "Remesh sizing").
         strength: f64,

@@ -119,7 +119,8 @@ enum Command {
         #[arg(long)]
         report: Option<PathBuf>,
         /// Sweeps of the area equalization of the pulled-back mesh with --optimize area (0: the
-        /// paper's plain pull-back; after the shape stage 10 sweeps run).
+        /// paper's plain pull-back). With shape+area the shape stage's polish equalizes the
+        /// areas itself and no sweeps run after it.
         #[arg(long, default_value_t = capmesh::remesh::DEFAULT_AREA_EQUALIZATION)]
         area_equalization: usize,
         /// What is optimised after the pull-back: shape+area (isotropic triangles of

@@ -54,7 +54,7 @@ pub struct ClosedOptions {
     /// Which end of the principal axis is punctured. Default [`PunctureEnd::Best`].
     pub puncture_end: PunctureEnd,
     /// Larger `flatten.lambda` values tried in turn when the transport stalls on a too
-    /// compressive initial map or the map is poor (see [`crate::param::lambda_fallback`]);
+    /// compressive initial map or the map is poor (see `crate::param::lambda_fallback`);
     /// empty keeps the first `lambda`'s result. Default [`DEFAULT_LAMBDA_FALLBACKS`]
     /// (0.5, 0.8, 1).
     pub lambda_fallbacks: Vec<f64>,

@@ -14,7 +14,7 @@ pub const DEFAULT_AREA_REFINEMENT: usize = crate::refine::area_refine::DEFAULT_S
 #[derive(Debug, Clone)]
 #[non_exhaustive]
 pub struct RefinementOptions {
-    /// Smoothing of the final centroid map (see [`crate::refine::smoothing`]);
+    /// Smoothing of the final centroid map (see `crate::refine::smoothing`);
     /// `Smoothing::Fixed(0.0)` is the paper's plain centroid map. Default [`Smoothing::Auto`].
     pub smoothing: Smoothing,
     /// Gauss-Seidel sweeps of the face-level area refinement (see

@@ -33,7 +33,7 @@ pub struct SearchOptions {
     /// and its mean `|d_area|` goes from 0.013 to 0.40. Default [`MASS_TOLERANCE`] (`1e-5`).
     pub tolerance: f64,
     /// Transport sites. A mesh of `n` vertices searches on a coarse level of at most
-    /// [`crate::param::search_level_sites`] sites (see [`crate::omt::coarse_level`]:
+    /// [`crate::param::search_level_sites`] sites (see `crate::omt::coarse_level`:
     /// `max(sites, n / SEARCH_RATIO)` when that is less than half the vertices; a closed
     /// surface also at most a quarter of its vertices, [`crate::param::SMALL_SEARCH_RATIO`])
     /// and solves the full transport problem at `r*` only; 0 always searches at full

@@ -6,15 +6,15 @@
 //! equal areas stretched by `s1 / s2`: no connectivity of those points is well shaped. This
 //! stage moves the points and changes the connectivity:
 //! 1. relaxation iterations: valence and max-min-angle edge flips judged on the surface
-//!    triangles ([`flips`]), then tangential relaxation towards a centroidal tessellation on
-//!    the surface, made in the map's plane and lifted through the inverse map ([`smooth`]);
+//!    triangles (`flips`), then tangential relaxation towards a centroidal tessellation on
+//!    the surface, made in the map's plane and lifted through the inverse map (`smooth`);
 //!    boundary vertices of an open surface slide along the input's boundary, its corners
-//!    kept ([`boundary`]); optionally edge splits and collapses ([`resample`]);
-//! 2. polish iterations: angle flips and a joint area-and-shape Gauss-Newton step ([`polish`]).
+//!    kept (`boundary`); optionally edge splits and collapses (`resample`);
+//! 2. polish iterations: angle flips and a joint area-and-shape Gauss-Newton step (`polish`).
 //!
-//! A closed surface's rim and bottom disk may first be merged into one vertex ([`bottom`]).
+//! A closed surface's rim and bottom disk may first be merged into one vertex (`bottom`).
 //! Every vertex stays exactly on the input surface (it is always the lift of a planar point)
-//! and the planar mesh stays an embedding. The area equalization ([`super::equalize`]) runs
+//! and the planar mesh stays an embedding. The area equalization (`super::equalize`) runs
 //! after it.
 
 pub(crate) mod bottom;
@@ -43,7 +43,7 @@ pub struct ShapeOptions {
     /// polish also equalizes the areas. Default 60.
     pub polish_iterations: usize,
     /// Split long and collapse short edges in the first half of the relaxation
-    /// ([`resample`]), where the map is resolved at the remesh's scale. Default on: it raised
+    /// (`resample`), where the map is resolved at the remesh's scale. Default on: it raised
     /// the mean smallest angle on 10 of the 11 shared meshes (docs/method.md, "Remesh shape").
     pub resample: bool,
     /// Weight `mu` of the shape term against the area term in the polish. Default 0.1: with
@@ -57,7 +57,7 @@ pub struct ShapeOptions {
     /// the flip, unless the old pair was bent more: sharper edges are creases and are kept.
     /// Default 60.
     pub crease_deg: f64,
-    /// Face sizing ([`super::sizing`]): uniform (the default) or curvature-adapted.
+    /// Face sizing (`super::sizing`): uniform (the default) or curvature-adapted.
     pub sizing: super::sizing::Sizing,
 }
 
