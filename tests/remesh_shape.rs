@@ -61,7 +61,7 @@ fn distance_to_boundary(mesh: &TriMesh, p: [f64; 3]) -> f64 {
 
 /// The shape stage against the area-only remesh of the same map.
 fn check(name: &str) {
-    check_with(name, 0.045);
+    check_with(name, 0.04);
 }
 
 /// [`check`] with a bound on `d_face_rel` (the issue's: 0.035, and 0.08 on the bird skull and
@@ -88,7 +88,7 @@ fn check_with(name: &str, max_d_face: f64) {
     assert!(stage.iterations > 0 && stage.after.share_below_30 <= stage.before.share_below_30.max(0.005), "{name}: {stage:?}");
     assert_eq!(validate(&shaped).unwrap().0, validate(&mesh).unwrap().0, "{name}: topology changed");
     assert!(a.share_below_30 <= 0.04, "{name}: {:.3} of the faces have an angle below 30 degrees", a.share_below_30);
-    assert!(a.mean_min_angle_deg >= 42.0, "{name}: mean smallest angle {:.1}", a.mean_min_angle_deg);
+    assert!(a.mean_min_angle_deg >= 45.0, "{name}: mean smallest angle {:.1}", a.mean_min_angle_deg);
     // The last pass removes slivers below 15 degrees where a flip or move can (15.3 degrees
     // at worst on the shared meshes); the bound leaves a margin for rounding differences.
     assert!(a.min_angle_deg >= 12.0, "{name}: smallest angle {:.1}", a.min_angle_deg);
@@ -138,7 +138,7 @@ fn closed_bunny() {
 /// Thin bony ridges: the equalized remesh crosses itself there before the last pass.
 #[test]
 fn closed_bird_skull() {
-    check_with("closed_bird_skull_CPallidusA_choi.obj.gz", 0.095);
+    check_with("closed_bird_skull_CPallidusA_choi.obj.gz", 0.09);
 }
 
 #[test]
