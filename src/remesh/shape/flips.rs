@@ -30,14 +30,14 @@ pub(crate) fn flip_to_max_min_angle(mesh: &mut Shaping, crease: f64) -> usize {
     Flipper::new(mesh, crease).run(mesh, Criterion::MinAngle)
 }
 
-/// A relaxation iteration's flips, sharing one edge table: when `valence`, first flip edges
-/// while a flip brings the valences of its four vertices closer to the regular ones (6
-/// inside, 4 on the boundary) without making the pair's smallest angle fall below
-/// [`VALENCE_FLOOR_DEG`] or below what it was (as in isotropic remeshing, Botsch and Kobbelt
-/// 2004; the sum of squared valence excesses falls with every flip, so a pass cannot cycle);
-/// then [`flip_to_max_min_angle`]. Returns the number of flips.
-pub(crate) fn flip_valence_then_angle(mesh: &mut Shaping, crease: f64, valence: bool) -> usize {
-    let mut flipper = Flipper::new(mesh, crease);
+/// A relaxation or polish iteration's flips with `flipper` (its edge table kept from the last
+/// iteration unless the faces changed otherwise): when `valence`, first flip edges while a
+/// flip brings the valences of its four vertices closer to the regular ones (6 inside, 4 on
+/// the boundary) without making the pair's smallest angle fall below [`VALENCE_FLOOR_DEG`] or
+/// below what it was (as in isotropic remeshing, Botsch and Kobbelt 2004; the sum of squared
+/// valence excesses falls with every flip, so a pass cannot cycle); then the flips of
+/// [`flip_to_max_min_angle`]. Returns the number of flips.
+pub(crate) fn flip_valence_then_angle(flipper: &mut Flipper, mesh: &mut Shaping, valence: bool) -> usize {
     let by_valence = if valence { flipper.run(mesh, Criterion::Valence) } else { 0 };
     by_valence + flipper.run(mesh, Criterion::MinAngle)
 }
@@ -52,9 +52,9 @@ enum Criterion {
     Valence,
 }
 
-/// The flips' bookkeeping, kept up to date across flips (vertex positions do not change
-/// while it lives).
-struct Flipper {
+/// The flips' bookkeeping, kept up to date across flips; [`Flipper::refresh`] after vertex
+/// moves, a new one after any other change of the faces.
+pub(crate) struct Flipper {
     /// Each undirected edge: its two faces (the one where it runs a -> b, then b -> a).
     edges: FastMap<(u32, u32), [u32; 2]>,
     /// Faces at each vertex.
@@ -67,7 +67,8 @@ struct Flipper {
 }
 
 impl Flipper {
-    fn new(mesh: &Shaping, crease: f64) -> Self {
+    /// The bookkeeping of `mesh`'s faces; `crease` as in [`flip_to_max_min_angle`].
+    pub(crate) fn new(mesh: &Shaping, crease: f64) -> Self {
         let n = mesh.plane.len();
         let mut valence = vec![0i32; n];
         for f in &mesh.faces {
@@ -87,6 +88,11 @@ impl Flipper {
         }
         let face_tan = mesh.faces.iter().map(|f| face_tan(mesh, *f)).collect();
         Self { edges, valence, regular, face_tan, cos_crease: crease.cos() }
+    }
+
+    /// Take the vertices' new positions (the faces unchanged since the last flips).
+    pub(crate) fn refresh(&mut self, mesh: &Shaping) {
+        self.face_tan.par_iter_mut().zip(mesh.faces.par_iter()).for_each(|(t, f)| *t = face_tan(mesh, *f));
     }
 
     /// Passes of flips by `criterion` until none flips ([`MAX_PASSES`] at most).

@@ -221,6 +221,7 @@ pub(crate) fn optimize_shape(
     let target_len = target_length(&mesh);
     let (faces0, mut len_factor) = (mesh.faces.len(), 1.0f64);
     let mut cycle: Option<(Vec<u32>, Vec<u32>)> = None;
+    let mut flipper: Option<flips::Flipper> = None;
     for it in 0..lloyd + options.polish_iterations {
         let resampled = options.resample && it < lloyd / 2 && target_len > 0.0;
         if resampled {
@@ -235,7 +236,17 @@ pub(crate) fn optimize_shape(
             let rho = vertex_densities(&mesh, input.lift, input.density);
             report.collapses += resample::collapse_short_edges(&mut mesh, &incidence, input.lift, resample::COLLAPSE * len, resample::SPLIT * len, &length_factor(&rho));
         }
-        report.flips += flips::flip_valence_then_angle(&mut mesh, crease, it < lloyd);
+        // The edge table lives across iterations: only splits and collapses change the faces
+        // besides the flips themselves.
+        let mut kept = match flipper.take() {
+            Some(mut f) if !resampled => {
+                f.refresh(&mesh);
+                f
+            }
+            _ => flips::Flipper::new(&mesh, crease),
+        };
+        report.flips += flips::flip_valence_then_angle(&mut kept, &mut mesh, it < lloyd);
+        flipper = Some(kept);
         // An open surface's boundary cycle changes with splits and collapses only (a flipped
         // edge is an interior one); a closed surface's rim does not slide.
         if input.track.is_some() && (cycle.is_none() || resampled) {
