@@ -1,7 +1,7 @@
 //! Repair and improvement of a planar map after the transport, used by the parameterization
-//! ([`crate::param`]) and the remeshing ([`mod@crate::remesh`]): fold repair ([`untangle`], with
-//! [`kernel_untangle`] and [`boundary_polygon`]), the smoothing of the centroid map
-//! ([`smoothing`]) and the face-level area refinement ([`area_refine`]).
+//! ([`crate::param`]) and the remeshing ([`mod@crate::remesh`]): fold repair (`untangle`, with
+//! `kernel_untangle` and `boundary_polygon`), the smoothing of the centroid map
+//! (`smoothing`) and the face-level area refinement ([`area_refine`]).
 
 mod area_local;
 pub mod area_refine;

@@ -168,7 +168,7 @@ pub const ITERATIVE_MAX_ITERATIONS: usize = 300;
 /// How the centroid map is smoothed.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Smoothing {
-    /// Walk the grid [`AUTO_KAPPAS`] (0 included) from `kappa = 1` towards smaller measured
+    /// Walk the grid `AUTO_KAPPAS` (0 included) from `kappa = 1` towards smaller measured
     /// mean `|d_area|` after fold repair, and keep the grid's local minimum. The default.
     #[default]
     Auto,

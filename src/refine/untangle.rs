@@ -22,7 +22,7 @@ use rayon::prelude::*;
 pub struct UntangleReport {
     /// Folded faces before the repair.
     pub folded_before: usize,
-    /// Vertices moved into the boundary polygon first (see [`super::boundary_polygon`]).
+    /// Vertices moved into the boundary polygon first (see `super::boundary_polygon`).
     pub fitted_into_polygon: usize,
     /// Single-vertex moves into one-ring kernels (the first, local stage, and after each
     /// region solve, counted over all attempts).
@@ -30,7 +30,7 @@ pub struct UntangleReport {
     /// Vertices whose position was not a positive combination of their neighbours (they got
     /// uniform weights).
     pub uniform_vertices: usize,
-    /// New region growths started around the folds an attempt left (see [`untangle`]).
+    /// New region growths started around the folds an attempt left (see `untangle`).
     pub restarts: usize,
     /// Largest displacement of a vertex, relative to the disk radius.
     pub max_displacement: f64,
