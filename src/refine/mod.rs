@@ -6,6 +6,7 @@
 mod area_local;
 pub mod area_refine;
 pub(crate) mod boundary_polygon;
+pub(crate) mod energy_untangle;
 pub(crate) mod kernel_untangle;
 pub(crate) mod smoothing;
 pub(crate) mod untangle;

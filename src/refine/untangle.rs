@@ -2,7 +2,9 @@
 //!
 //! Placing each vertex at the centroid of its power cell (Zhao et al. 2013) does not guarantee
 //! an orientation-preserving piecewise-linear map: where the initial map squeezed a protrusion
-//! (ears, fingers) a few triangles can fold. The repair solves one Tutte-type system
+//! (ears, fingers) a few triangles can fold. After single-vertex kernel moves, the folds left
+//! go to an untangling-energy minimization over a few rings around them
+//! ([`super::energy_untangle`]); if that fails, the repair solves one Tutte-type system
 //! (Floater's convex combination maps), first near the folds and growing outwards: every
 //! vertex of the region becomes a convex combination of its
 //! neighbours, with the mean value coordinates of its transport position where that position
@@ -12,6 +14,7 @@
 //! valid it changes only near the folds.
 
 use super::boundary_polygon::{fit_into_boundary_polygon, PolygonFit};
+use super::energy_untangle::{energy_untangle, FaceIncidence};
 use super::kernel_untangle::kernel_untangle;
 use crate::linalg::{LuSolver, TripletList};
 use crate::mesh::geometry::folded_faces;
@@ -32,6 +35,9 @@ pub struct UntangleReport {
     pub uniform_vertices: usize,
     /// New region growths started around the folds an attempt left (see `untangle`).
     pub restarts: usize,
+    /// Vertices of the region whose energy minimization ([`super::energy_untangle`]) repaired
+    /// the folds the kernel moves left (0 when it was not needed or did not succeed).
+    pub energy_region: usize,
     /// Largest displacement of a vertex, relative to the disk radius.
     pub max_displacement: f64,
     /// Folded faces left (0 unless the solve failed).
@@ -94,8 +100,9 @@ fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
 ///
 /// Vertices outside the polygon of the fixed ones are first moved into it
 /// ([`fit_into_boundary_polygon`]): no fold-free map has them there. Then single vertices
-/// move into the kernels of their rings ([`kernel_untangle`]); folds that this leaves are
-/// handled by the convex-combination solve, local first: only vertices in planar discs and
+/// move into the kernels of their rings ([`kernel_untangle`]); folds that this leaves go to
+/// the energy minimization over 2 to 32 rings around them ([`energy_repair`]), and if no
+/// region is enough, to the convex-combination solve, local first: only vertices in planar discs and
 /// rings of the mesh around the folded faces move (the rest act as its boundary), both
 /// growing until no fold is left (`RegionGrowth` below); the last resort is the whole mesh with
 /// the fixed boundary. An attempt that unties the folds its growth started from (or leaves
@@ -118,6 +125,11 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
     report.kernel_moves = kernel_untangle(pos, faces, &rings, fixed);
     let folded = folded_faces(pos, faces);
     if folded.is_empty() {
+        report.max_displacement = max_displacement(pos, &start, radius);
+        return report;
+    }
+    if let Some(size) = energy_repair(pos, faces, &rings, fixed, &folded) {
+        report.energy_region = size;
         report.max_displacement = max_displacement(pos, &start, radius);
         return report;
     }
@@ -174,6 +186,75 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
     }
     report.max_displacement = max_displacement(pos, &start, radius);
     report
+}
+
+/// Rings of the mesh around the folds that [`energy_repair`] tries, in order.
+const ENERGY_RINGS: [usize; 5] = [2, 4, 8, 16, 32];
+
+/// Largest region [`energy_repair`] tries, unless a 32nd of the mesh is more. Its sweeps cost
+/// the region's size each, and where the folds are many and far apart (a closed surface mapped
+/// onto the fixed hemisphere: 628 folds on the 48k brain, every attempt failing) attempts up to
+/// 32 rings took minutes; on the meshes where it succeeds the region had 34 to 370 vertices.
+const ENERGY_MAX_REGION: usize = 2000;
+
+/// Vertex steps (region size times sweeps, over all attempts) [`energy_repair`] may spend.
+/// Where it succeeds (the bundled meshes, the 48k brain subdivided once and twice) it spent at
+/// most 90k; a failing attempt on 1245 vertices (the 48k brain on the fixed hemisphere, 281
+/// folds) spent 1.2 s before this bound.
+const ENERGY_VERTEX_STEPS: usize = 300_000;
+
+/// Repair the folded faces `folded` by the energy minimization of [`super::energy_untangle`]
+/// over the vertices within `k` rings of them ([`ENERGY_RINGS`]), each attempt from the same
+/// start; returns the region's size when an attempt leaves no fold (then `pos` holds it),
+/// `None` otherwise (then `pos` is unchanged).
+fn energy_repair(pos: &mut [[f64; 2]], faces: &[[u32; 3]], rings: &[Option<Vec<u32>>], fixed: &[bool], folded: &[usize]) -> Option<usize> {
+    let n = pos.len();
+    let incidence = FaceIncidence::new(n, faces);
+    let start = pos.to_vec();
+    let mut hops = vec![u32::MAX; n];
+    let mut frontier: Vec<u32> = folded.iter().flat_map(|&f| faces[f]).collect();
+    frontier.sort_unstable();
+    frontier.dedup();
+    let mut reached: Vec<u32> = frontier.clone();
+    for &v in &frontier {
+        hops[v as usize] = 0;
+    }
+    let (mut grown, mut budget) = (0, ENERGY_VERTEX_STEPS);
+    for k in ENERGY_RINGS {
+        while grown < k && !frontier.is_empty() {
+            let mut next = Vec::new();
+            for &v in &frontier {
+                for &u in rings[v as usize].iter().flatten() {
+                    if hops[u as usize] == u32::MAX {
+                        hops[u as usize] = grown as u32 + 1;
+                        next.push(u);
+                    }
+                }
+            }
+            reached.extend_from_slice(&next);
+            frontier = next;
+            grown += 1;
+        }
+        let mut region: Vec<u32> = reached.iter().copied().filter(|&v| !fixed[v as usize] && rings[v as usize].is_some()).collect();
+        if region.len() > ENERGY_MAX_REGION.max(n / 32) {
+            break;
+        }
+        region.sort_unstable();
+        // Changed vertices go back to the start before each attempt.
+        for &v in &reached {
+            pos[v as usize] = start[v as usize];
+        }
+        if energy_untangle(pos, faces, &incidence, &region, &mut budget) && folded_faces(pos, faces).is_empty() {
+            return Some(region.len());
+        }
+        if frontier.is_empty() {
+            break;
+        }
+    }
+    for &v in &reached {
+        pos[v as usize] = start[v as usize];
+    }
+    None
 }
 
 /// Which vertices the convex-combination solve may move: the union of planar discs around the
