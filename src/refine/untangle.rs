@@ -35,8 +35,9 @@ pub struct UntangleReport {
     pub uniform_vertices: usize,
     /// New region growths started around the folds an attempt left (see `untangle`).
     pub restarts: usize,
-    /// Vertices of the region whose energy minimization ([`super::energy_untangle`]) repaired
-    /// the folds the kernel moves left (0 when it was not needed or did not succeed).
+    /// Vertices of the largest region of the energy minimization ([`super::energy_untangle`])
+    /// that repaired the folds the kernel moves left (0 when it was not needed or did not
+    /// succeed).
     pub energy_region: usize,
     /// Largest displacement of a vertex, relative to the disk radius.
     pub max_displacement: f64,
@@ -197,11 +198,17 @@ const ENERGY_RINGS: [usize; 5] = [2, 4, 8, 16, 32];
 /// 32 rings took minutes; on the meshes where it succeeds the region had 34 to 370 vertices.
 const ENERGY_MAX_REGION: usize = 2000;
 
-/// Vertex steps (region size times sweeps, over all attempts) [`energy_repair`] may spend.
-/// Where it succeeds (the bundled meshes, the 48k brain subdivided once and twice) it spent at
+/// Vertex steps (region size times sweeps, over all attempts) [`energy_repair`] may spend,
+/// at least; [`ENERGY_STEPS_PER_VERTEX`] times the mesh's vertices where that is more. Where
+/// it succeeds on the bundled meshes and the 48k brain subdivided once and twice it spent at
 /// most 90k; a failing attempt on 1245 vertices (the 48k brain on the fixed hemisphere, 281
 /// folds) spent 1.2 s before this bound.
 const ENERGY_VERTEX_STEPS: usize = 300_000;
+
+/// Vertex steps per mesh vertex [`energy_repair`] may spend: on the synthetic 1M ellipsoid a
+/// smoothing candidate with 378 folds ran out of 300k steps, and its convex-combination solves
+/// then took most of a minute (and squeezed the map to mean `|d_area|` 3.0).
+const ENERGY_STEPS_PER_VERTEX: usize = 4;
 
 /// Repair the folded faces `folded` by the energy minimization of [`super::energy_untangle`]
 /// over the vertices within `k` rings of them ([`ENERGY_RINGS`]), each attempt from the same
@@ -210,52 +217,84 @@ const ENERGY_VERTEX_STEPS: usize = 300_000;
 fn energy_repair(pos: &mut [[f64; 2]], faces: &[[u32; 3]], rings: &[Option<Vec<u32>>], fixed: &[bool], folded: &[usize]) -> Option<usize> {
     let n = pos.len();
     let incidence = FaceIncidence::new(n, faces);
-    let start = pos.to_vec();
-    let mut hops = vec![u32::MAX; n];
-    let mut frontier: Vec<u32> = folded.iter().flat_map(|&f| faces[f]).collect();
-    frontier.sort_unstable();
-    frontier.dedup();
-    let mut reached: Vec<u32> = frontier.clone();
-    for &v in &frontier {
-        hops[v as usize] = 0;
-    }
-    let (mut grown, mut budget) = (0, ENERGY_VERTEX_STEPS);
-    for k in ENERGY_RINGS {
-        while grown < k && !frontier.is_empty() {
-            let mut next = Vec::new();
-            for &v in &frontier {
-                for &u in rings[v as usize].iter().flatten() {
-                    if hops[u as usize] == u32::MAX {
-                        hops[u as usize] = grown as u32 + 1;
-                        next.push(u);
+    let original = pos.to_vec();
+    let mut budget = ENERGY_VERTEX_STEPS.max(ENERGY_STEPS_PER_VERTEX * n);
+    // The start of the current round and its folds; the best attempt of a round that left
+    // fewer folds starts the next one (see `ENERGY_ROUNDS`).
+    let mut start = original.clone();
+    let mut folds = folded.to_vec();
+    let mut largest = 0;
+    for _ in 0..ENERGY_ROUNDS {
+        let mut best: Option<(Vec<usize>, Vec<[f64; 2]>)> = None;
+        let mut hops = vec![false; n];
+        let mut frontier: Vec<u32> = folds.iter().flat_map(|&f| faces[f]).collect();
+        frontier.sort_unstable();
+        frontier.dedup();
+        let mut reached: Vec<u32> = frontier.clone();
+        for &v in &frontier {
+            hops[v as usize] = true;
+        }
+        let mut grown = 0;
+        for k in ENERGY_RINGS {
+            while grown < k && !frontier.is_empty() {
+                let mut next = Vec::new();
+                for &v in &frontier {
+                    for &u in rings[v as usize].iter().flatten() {
+                        if !hops[u as usize] {
+                            hops[u as usize] = true;
+                            next.push(u);
+                        }
                     }
                 }
+                reached.extend_from_slice(&next);
+                frontier = next;
+                grown += 1;
             }
-            reached.extend_from_slice(&next);
-            frontier = next;
-            grown += 1;
+            let mut region: Vec<u32> = reached.iter().copied().filter(|&v| !fixed[v as usize] && rings[v as usize].is_some()).collect();
+            if region.len() > ENERGY_MAX_REGION.max(n / 32) {
+                break;
+            }
+            region.sort_unstable();
+            largest = largest.max(region.len());
+            // Changed vertices go back to the round's start before each attempt.
+            for &v in &reached {
+                pos[v as usize] = start[v as usize];
+            }
+            let ok = energy_untangle(pos, faces, &incidence, &region, &mut budget);
+            let left = folded_faces(pos, faces);
+            if ok && left.is_empty() {
+                return Some(largest);
+            }
+            let halved = 2 * left.len() <= folds.len();
+            if left.len() < best.as_ref().map_or(folds.len(), |b| b.0.len()) {
+                best = Some((left, pos.to_vec()));
+            }
+            // At most half the folds left: new, small regions around them rather than larger
+            // ones around all.
+            if halved || frontier.is_empty() || budget == 0 {
+                break;
+            }
         }
-        let mut region: Vec<u32> = reached.iter().copied().filter(|&v| !fixed[v as usize] && rings[v as usize].is_some()).collect();
-        if region.len() > ENERGY_MAX_REGION.max(n / 32) {
-            break;
-        }
-        region.sort_unstable();
-        // Changed vertices go back to the start before each attempt.
-        for &v in &reached {
-            pos[v as usize] = start[v as usize];
-        }
-        if energy_untangle(pos, faces, &incidence, &region, &mut budget) && folded_faces(pos, faces).is_empty() {
-            return Some(region.len());
-        }
-        if frontier.is_empty() {
-            break;
+        pos.copy_from_slice(&start);
+        match best {
+            Some((left, kept)) => {
+                folds = left;
+                start = kept;
+                pos.copy_from_slice(&start);
+            }
+            None => break,
         }
     }
-    for &v in &reached {
-        pos[v as usize] = start[v as usize];
-    }
+    pos.copy_from_slice(&original);
     None
 }
+
+/// Rounds of [`energy_repair`] at most: a round whose best attempt left fewer folds than it
+/// started with (but some) starts the next round from there, with new regions around the
+/// folds left; an attempt that leaves at most half of its round's folds ends the round. On the synthetic 1M ellipsoid (smoothing `kappa` 3) 238 folds went to 20, 23,
+/// 15 and 5 in regions of 460 to 2327 vertices, none to 0, and the convex-combination solves
+/// that followed squeezed the map (mean `|d_area|` 2.9).
+const ENERGY_ROUNDS: usize = 8;
 
 /// Which vertices the convex-combination solve may move: the union of planar discs around the
 /// folded faces and rings of the mesh around them, both growing at each attempt.
