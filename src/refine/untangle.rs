@@ -35,7 +35,7 @@ pub struct UntangleReport {
     pub uniform_vertices: usize,
     /// New region growths started around the folds an attempt left (see `untangle`).
     pub restarts: usize,
-    /// Vertices of the largest region of the energy minimization ([`super::energy_untangle`])
+    /// Vertices of the largest region of the energy minimization (`super::energy_untangle`)
     /// that repaired the folds the kernel moves left (0 when it was not needed or did not
     /// succeed).
     pub energy_region: usize,
