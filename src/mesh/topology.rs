@@ -468,6 +468,41 @@ pub fn is_boundary_vertex(mesh: &TriMesh) -> Vec<bool> {
     mask
 }
 
+/// The faces around each vertex, in compressed rows (vertex `v`'s at `start[v]..start[v + 1]`).
+pub(crate) struct VertexFaces {
+    start: Vec<usize>,
+    faces: Vec<u32>,
+}
+
+impl VertexFaces {
+    /// The incidence of `n` vertices in `faces`.
+    pub(crate) fn new(n: usize, faces: &[[u32; 3]]) -> Self {
+        let mut start = vec![0usize; n + 1];
+        for f in faces {
+            for &v in f {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut next = start.clone();
+        let mut list = vec![0u32; start[n]];
+        for (t, f) in faces.iter().enumerate() {
+            for &v in f {
+                list[next[v as usize]] = t as u32;
+                next[v as usize] += 1;
+            }
+        }
+        Self { start, faces: list }
+    }
+
+    /// The faces at vertex `v`.
+    pub(crate) fn of(&self, v: usize) -> &[u32] {
+        &self.faces[self.start[v]..self.start[v + 1]]
+    }
+}
+
 /// The vertices within `rings` edges of a `marked` one (`marked` grown ring by ring along
 /// the edges of `faces`).
 pub fn within_rings(marked: &[bool], faces: &[[u32; 3]], rings: usize) -> Vec<bool> {

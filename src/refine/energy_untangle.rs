@@ -18,6 +18,7 @@
 //! more of a vertex's faces than it had folded.
 
 use crate::mesh::geometry::signed_area_2d;
+pub(crate) use crate::mesh::topology::VertexFaces as FaceIncidence;
 use std::collections::HashMap;
 
 /// Weight of the area term against the shape term.
@@ -37,39 +38,6 @@ const STALL_ROUNDS: usize = 12;
 
 /// Step halvings before a vertex stays.
 const HALVINGS: usize = 12;
-
-/// Vertex-to-face incidence (compressed rows).
-pub(crate) struct FaceIncidence {
-    offsets: Vec<u32>,
-    faces: Vec<u32>,
-}
-
-impl FaceIncidence {
-    pub(crate) fn new(n: usize, faces: &[[u32; 3]]) -> Self {
-        let mut offsets = vec![0u32; n + 1];
-        for f in faces {
-            for &v in f {
-                offsets[v as usize + 1] += 1;
-            }
-        }
-        for v in 0..n {
-            offsets[v + 1] += offsets[v];
-        }
-        let mut fill = offsets.clone();
-        let mut list = vec![0u32; offsets[n] as usize];
-        for (t, f) in faces.iter().enumerate() {
-            for &v in f {
-                list[fill[v as usize] as usize] = t as u32;
-                fill[v as usize] += 1;
-            }
-        }
-        Self { offsets, faces: list }
-    }
-
-    pub(crate) fn of(&self, v: usize) -> &[u32] {
-        &self.faces[self.offsets[v] as usize..self.offsets[v + 1] as usize]
-    }
-}
 
 type M2 = [[f64; 2]; 2];
 

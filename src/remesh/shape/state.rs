@@ -91,27 +91,9 @@ impl Shaping {
         self.orientation * signed_area_2d(a, b, c) > min_area
     }
 
-    /// The faces around each vertex (compressed rows: vertex `v`'s at `start[v]..start[v + 1]`).
+    /// The faces around each vertex.
     pub fn incidence(&self) -> Incidence {
-        let n = self.plane.len();
-        let mut start = vec![0usize; n + 1];
-        for f in &self.faces {
-            for &v in f {
-                start[v as usize + 1] += 1;
-            }
-        }
-        for v in 0..n {
-            start[v + 1] += start[v];
-        }
-        let mut next = start.clone();
-        let mut faces = vec![0u32; start[n]];
-        for (t, f) in self.faces.iter().enumerate() {
-            for &v in f {
-                faces[next[v as usize]] = t as u32;
-                next[v as usize] += 1;
-            }
-        }
-        Incidence { start, faces }
+        Incidence::new(self.plane.len(), &self.faces)
     }
 
     /// Colour classes of the vertices that move (`role != Fixed`): no two vertices of a class
@@ -147,17 +129,7 @@ impl Shaping {
 }
 
 /// Faces around each vertex.
-pub(crate) struct Incidence {
-    start: Vec<usize>,
-    faces: Vec<u32>,
-}
-
-impl Incidence {
-    /// The faces at vertex `v`.
-    pub fn of(&self, v: usize) -> &[u32] {
-        &self.faces[self.start[v]..self.start[v + 1]]
-    }
-}
+pub(crate) use crate::mesh::topology::VertexFaces as Incidence;
 
 /// Each undirected edge `(min, max)`: its face where it runs min -> max, and where it runs
 /// max -> min (`u32::MAX` when none).
