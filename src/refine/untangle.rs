@@ -14,7 +14,7 @@
 //! valid it changes only near the folds.
 
 use super::boundary_polygon::{fit_into_boundary_polygon, PolygonFit};
-use super::energy_untangle::{energy_untangle, FaceIncidence};
+use super::energy_untangle::energy_repair;
 use super::kernel_untangle::kernel_untangle;
 use crate::linalg::{LuSolver, TripletList};
 use crate::mesh::geometry::folded_faces;
@@ -102,7 +102,7 @@ fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
 /// Vertices outside the polygon of the fixed ones are first moved into it
 /// ([`fit_into_boundary_polygon`]): no fold-free map has them there. Then single vertices
 /// move into the kernels of their rings ([`kernel_untangle`]); folds that this leaves go to
-/// the energy minimization over 2 to 32 rings around them ([`energy_repair`]), and if no
+/// the energy minimization over 2 to 32 rings around them (`energy_repair`), and if no
 /// region is enough, to the convex-combination solve, local first: only vertices in planar discs and
 /// rings of the mesh around the folded faces move (the rest act as its boundary), both
 /// growing until no fold is left (`RegionGrowth` below); the last resort is the whole mesh with
@@ -188,113 +188,6 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
     report.max_displacement = max_displacement(pos, &start, radius);
     report
 }
-
-/// Rings of the mesh around the folds that [`energy_repair`] tries, in order.
-const ENERGY_RINGS: [usize; 5] = [2, 4, 8, 16, 32];
-
-/// Largest region [`energy_repair`] tries, unless a 32nd of the mesh is more. Its sweeps cost
-/// the region's size each, and where the folds are many and far apart (a closed surface mapped
-/// onto the fixed hemisphere: 628 folds on the 48k brain, every attempt failing) attempts up to
-/// 32 rings took minutes; on the meshes where it succeeds the region had 34 to 370 vertices.
-const ENERGY_MAX_REGION: usize = 2000;
-
-/// Vertex steps (region size times sweeps, over all attempts) [`energy_repair`] may spend,
-/// at least; [`ENERGY_STEPS_PER_VERTEX`] times the mesh's vertices where that is more. Where
-/// it succeeds on the bundled meshes and the 48k brain subdivided once and twice it spent at
-/// most 90k; a failing attempt on 1245 vertices (the 48k brain on the fixed hemisphere, 281
-/// folds) spent 1.2 s before this bound.
-const ENERGY_VERTEX_STEPS: usize = 300_000;
-
-/// Vertex steps per mesh vertex [`energy_repair`] may spend: on the synthetic 1M ellipsoid a
-/// smoothing candidate with 378 folds ran out of 300k steps, and its convex-combination solves
-/// then took most of a minute (and squeezed the map to mean `|d_area|` 3.0).
-const ENERGY_STEPS_PER_VERTEX: usize = 4;
-
-/// Repair the folded faces `folded` by the energy minimization of [`super::energy_untangle`]
-/// over the vertices within `k` rings of them ([`ENERGY_RINGS`]), each attempt from the same
-/// start; returns the region's size when an attempt leaves no fold (then `pos` holds it),
-/// `None` otherwise (then `pos` is unchanged).
-fn energy_repair(pos: &mut [[f64; 2]], faces: &[[u32; 3]], rings: &[Option<Vec<u32>>], fixed: &[bool], folded: &[usize]) -> Option<usize> {
-    let n = pos.len();
-    let incidence = FaceIncidence::new(n, faces);
-    let original = pos.to_vec();
-    let mut budget = ENERGY_VERTEX_STEPS.max(ENERGY_STEPS_PER_VERTEX * n);
-    // The start of the current round and its folds; the best attempt of a round that left
-    // fewer folds starts the next one (see `ENERGY_ROUNDS`).
-    let mut start = original.clone();
-    let mut folds = folded.to_vec();
-    let mut largest = 0;
-    for _ in 0..ENERGY_ROUNDS {
-        let mut best: Option<(Vec<usize>, Vec<[f64; 2]>)> = None;
-        let mut hops = vec![false; n];
-        let mut frontier: Vec<u32> = folds.iter().flat_map(|&f| faces[f]).collect();
-        frontier.sort_unstable();
-        frontier.dedup();
-        let mut reached: Vec<u32> = frontier.clone();
-        for &v in &frontier {
-            hops[v as usize] = true;
-        }
-        let mut grown = 0;
-        for k in ENERGY_RINGS {
-            while grown < k && !frontier.is_empty() {
-                let mut next = Vec::new();
-                for &v in &frontier {
-                    for &u in rings[v as usize].iter().flatten() {
-                        if !hops[u as usize] {
-                            hops[u as usize] = true;
-                            next.push(u);
-                        }
-                    }
-                }
-                reached.extend_from_slice(&next);
-                frontier = next;
-                grown += 1;
-            }
-            let mut region: Vec<u32> = reached.iter().copied().filter(|&v| !fixed[v as usize] && rings[v as usize].is_some()).collect();
-            if region.len() > ENERGY_MAX_REGION.max(n / 32) {
-                break;
-            }
-            region.sort_unstable();
-            largest = largest.max(region.len());
-            // Changed vertices go back to the round's start before each attempt.
-            for &v in &reached {
-                pos[v as usize] = start[v as usize];
-            }
-            let ok = energy_untangle(pos, faces, &incidence, &region, &mut budget);
-            let left = folded_faces(pos, faces);
-            if ok && left.is_empty() {
-                return Some(largest);
-            }
-            let halved = 2 * left.len() <= folds.len();
-            if left.len() < best.as_ref().map_or(folds.len(), |b| b.0.len()) {
-                best = Some((left, pos.to_vec()));
-            }
-            // At most half the folds left: new, small regions around them rather than larger
-            // ones around all.
-            if halved || frontier.is_empty() || budget == 0 {
-                break;
-            }
-        }
-        pos.copy_from_slice(&start);
-        match best {
-            Some((left, kept)) => {
-                folds = left;
-                start = kept;
-                pos.copy_from_slice(&start);
-            }
-            None => break,
-        }
-    }
-    pos.copy_from_slice(&original);
-    None
-}
-
-/// Rounds of [`energy_repair`] at most: a round whose best attempt left fewer folds than it
-/// started with (but some) starts the next round from there, with new regions around the
-/// folds left; an attempt that leaves at most half of its round's folds ends the round. On the synthetic 1M ellipsoid (smoothing `kappa` 3) 238 folds went to 20, 23,
-/// 15 and 5 in regions of 460 to 2327 vertices, none to 0, and the convex-combination solves
-/// that followed squeezed the map (mean `|d_area|` 2.9).
-const ENERGY_ROUNDS: usize = 8;
 
 /// Which vertices the convex-combination solve may move: the union of planar discs around the
 /// folded faces and rings of the mesh around them, both growing at each attempt.
