@@ -12,7 +12,7 @@
 //! ([`ITERATIVE_UNKNOWNS`]), the others (and any whose gradients stall) by sparse Cholesky.
 
 use crate::omt::planar_transport::TransportMap;
-use super::untangle::{untangle, UntangleReport};
+use super::untangle::{untangle, untangle_locally, PendingRepair, UntangleReport};
 use crate::linalg::{jacobi_cg2, CotanWeights, SolveError, SpdSolver};
 use faer::sparse::SparseColMat;
 use crate::metrics::{area_distortion, Stats};
@@ -202,6 +202,9 @@ pub struct SmoothingTrial {
     pub mean_abs_area_distortion: f64,
     /// Folded faces before repair.
     pub folded_before_repair: usize,
+    /// Folded faces after it: more than 0 when even the convex-combination solves failed, or
+    /// when they were not run because another strength was fold-free without them.
+    pub folded_after_repair: usize,
 }
 
 /// The smoothed map that was kept.
@@ -257,14 +260,26 @@ pub fn smooth_centroid_map(
     }
     let evaluate = |kappa: f64| -> Result<Candidate, SolveError> {
         let mut p = primed.clone().smooth(&map.centroids, &map.masses, kappa)?;
-        let rep = untangle(&mut p, faces, fixed, radius);
-        let d = Stats::of(area_distortion(vertices, &to_domain(&p), faces)).mean_abs;
-        let trial = SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before };
-        Ok(Candidate { key: (rep.folded_after > 0, d), trial, kept: SmoothedMap { kappa, positions: p, untangle: rep, trials: Vec::new() } })
+        let (rep, pending) = match untangle_locally(&mut p, faces, fixed, radius) {
+            Ok(rep) => (rep, None),
+            Err(pending) => (pending.report_so_far(&p, radius), Some(pending)),
+        };
+        Ok(Candidate::new(kappa, p, rep, pending, vertices, faces, to_domain))
+    };
+    // The convex-combination solves of a candidate its local repair left folded.
+    let finish = |c: &mut Candidate| {
+        if let Some(pending) = c.pending.take() {
+            let rep = pending.finish(&mut c.kept.positions, faces, fixed, radius);
+            *c = Candidate::new(c.kept.kappa, std::mem::take(&mut c.kept.positions), rep, None, vertices, faces, to_domain);
+        }
     };
     let mut done: Vec<Candidate> = match smoothing {
-        Smoothing::Fixed(k) => vec![evaluate(k)?],
-        Smoothing::Auto => walk_grid(&evaluate)?,
+        Smoothing::Fixed(k) => {
+            let mut p = primed.clone().smooth(&map.centroids, &map.masses, k)?;
+            let rep = untangle(&mut p, faces, fixed, radius);
+            vec![Candidate::new(k, p, rep, None, vertices, faces, to_domain)]
+        }
+        Smoothing::Auto => walk_grid(&evaluate, &finish)?,
     };
     let best = best_of(done.iter()).ok_or(SolveError::Singular { what: "centroid-map smoothing (no candidate)" })?;
     let trials = done.iter().map(|c| c.trial).collect();
@@ -298,7 +313,12 @@ const AUTO_START: usize = 4;
 /// found is still poor (mean `|d_area|` above [`WALK_TRUST`], or a fold left) the rest of the
 /// grid is evaluated too: on the synthetic 164k-vertex ellipsoid every `kappa > 0` collapses
 /// (mean `|d_area|` 1.5 to 2.4) and only the plain map (`kappa = 0`) is good.
-fn walk_grid(evaluate: &(dyn Fn(f64) -> Result<Candidate, SolveError> + Sync)) -> Result<Vec<Candidate>, SolveError> {
+///
+/// A candidate whose local fold repair left folds ([`PendingRepair`]) counts as folded while
+/// the grid is walked; its convex-combination solves are made only when no candidate is
+/// fold-free without them (`settle`): on the 1M-vertex ellipsoid they took half of the
+/// whole run for a strength that lost.
+fn walk_grid(evaluate: &(dyn Fn(f64) -> Result<Candidate, SolveError> + Sync), finish: &(dyn Fn(&mut Candidate) + Sync)) -> Result<Vec<Candidate>, SolveError> {
     let mut done: Vec<(usize, Candidate)> = Vec::new();
     // The grid points `indices`, in parallel, added to `done`.
     let evaluate_all = |indices: &[usize], done: &mut Vec<(usize, Candidate)>| -> Result<(), SolveError> {
@@ -320,10 +340,18 @@ fn walk_grid(evaluate: &(dyn Fn(f64) -> Result<Candidate, SolveError> + Sync)) -
         }
         next.dedup();
     }
+    // When every candidate is folded, the convex-combination solves of all that need them.
+    let settle = |done: &mut Vec<(usize, Candidate)>| {
+        if best_of(done.iter().map(|(_, c)| c)).is_some_and(|b| done[b].1.key.0) {
+            done.par_iter_mut().for_each(|(_, c)| finish(c));
+        }
+    };
+    settle(&mut done);
     let poor = best_of(done.iter().map(|(_, c)| c)).is_some_and(|b| done[b].1.key.0 || !(done[b].1.key.1 <= WALK_TRUST));
     if poor {
         let rest: Vec<usize> = (0..AUTO_KAPPAS.len()).filter(|i| !done.iter().any(|(j, _)| j == i)).collect();
         evaluate_all(&rest, &mut done)?;
+        settle(&mut done);
     }
     done.sort_by_key(|(i, _)| *i);
     Ok(done.into_iter().map(|(_, c)| c).collect())
@@ -335,6 +363,18 @@ struct Candidate {
     key: (bool, f64),
     trial: SmoothingTrial,
     kept: SmoothedMap,
+    /// The convex-combination solves still to be made, if the local repair left folds.
+    pending: Option<PendingRepair>,
+}
+
+impl Candidate {
+    /// The candidate of strength `kappa` at planar positions `p` after the repair `rep`,
+    /// measured on the domain.
+    fn new(kappa: f64, p: Vec<[f64; 2]>, rep: UntangleReport, pending: Option<PendingRepair>, vertices: &[[f64; 3]], faces: &[[u32; 3]], to_domain: &ToDomain<'_>) -> Self {
+        let d = Stats::of(area_distortion(vertices, &to_domain(&p), faces)).mean_abs;
+        let trial = SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before, folded_after_repair: rep.folded_after };
+        Self { key: (rep.folded_after > 0, d), trial, kept: SmoothedMap { kappa, positions: p, untangle: rep, trials: Vec::new() }, pending }
+    }
 }
 
 #[cfg(test)]

@@ -112,13 +112,46 @@ fn mean_value_weights(p: [f64; 2], ring: &[[f64; 2]]) -> Option<Vec<f64>> {
 /// vertices, as on a punctured closed surface, the whole-mesh solve can fold more than a
 /// local one).
 pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius: f64) -> UntangleReport {
+    match untangle_locally(pos, faces, fixed, radius) {
+        Ok(report) => report,
+        Err(pending) => pending.finish(pos, faces, fixed, radius),
+    }
+}
+
+/// A fold repair whose local stages (kernel moves, the energy minimization) left folds: the
+/// convex-combination solves of [`PendingRepair::finish`] are still to be made.
+pub(crate) struct PendingRepair {
+    report: UntangleReport,
+    /// The positions before any repair.
+    start: Vec<[f64; 2]>,
+    /// The folded faces the local stages left.
+    folded: Vec<usize>,
+}
+
+impl PendingRepair {
+    /// The report as it would be if the repair stopped here (the folds left counted).
+    pub(crate) fn report_so_far(&self, pos: &[[f64; 2]], radius: f64) -> UntangleReport {
+        UntangleReport { folded_after: self.folded.len(), max_displacement: max_displacement(pos, &self.start, radius), ..self.report }
+    }
+
+    /// The convex-combination solves on `pos` as the local stages left it (see [`untangle`]).
+    pub(crate) fn finish(self, pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius: f64) -> UntangleReport {
+        let rings = ordered_rings(pos.len(), faces);
+        convex_combination_repair(pos, faces, fixed, radius, &rings, self)
+    }
+}
+
+/// The local stages of [`untangle`]: the fit into the boundary polygon, kernel moves and the
+/// energy minimization. `Err` when folds are left for the convex-combination solves; their
+/// cost grows with the region they need, and the smoothing's candidates call them only when
+/// no candidate is fold-free without them (`super::smoothing`).
+pub(crate) fn untangle_locally(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius: f64) -> Result<UntangleReport, PendingRepair> {
     let folded = folded_faces(pos, faces);
     let mut report = UntangleReport { folded_before: folded.len(), ..Default::default() };
     if folded.is_empty() {
-        return report;
+        return Ok(report);
     }
-    let n = pos.len();
-    let rings = ordered_rings(n, faces);
+    let rings = ordered_rings(pos.len(), faces);
     let start = pos.to_vec();
     if let PolygonFit::Moved(m) = fit_into_boundary_polygon(pos, fixed, radius) {
         report.fitted_into_polygon = m;
@@ -127,15 +160,22 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
     let folded = folded_faces(pos, faces);
     if folded.is_empty() {
         report.max_displacement = max_displacement(pos, &start, radius);
-        return report;
+        return Ok(report);
     }
     if let Some(size) = energy_repair(pos, faces, &rings, fixed, &folded) {
         report.energy_region = size;
         report.max_displacement = max_displacement(pos, &start, radius);
-        return report;
+        return Ok(report);
     }
+    Err(PendingRepair { report, start, folded })
+}
+
+/// The convex-combination solves of [`untangle`], from where the local stages left `pos`.
+fn convex_combination_repair(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius: f64, rings: &[Option<Vec<u32>>], pending: PendingRepair) -> UntangleReport {
+    let PendingRepair { mut report, start, folded } = pending;
+    let n = pos.len();
     let mut original = pos.to_vec();
-    let mut growth = RegionGrowth::new(&folded, faces, &original, &rings, radius);
+    let mut growth = RegionGrowth::new(&folded, faces, &original, rings, radius);
     // The folded faces at the start of the current growth (a round): an attempt that unfolds
     // all of them, or leaves fewer folds than the round started with, starts a new round of
     // small regions around the folds it left (see `RESTARTS`).
@@ -145,17 +185,17 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
     let mut best: Option<(usize, Vec<[f64; 2]>, usize)> = None;
     loop {
         attempt += 1;
-        let region = growth.grow(&rings);
+        let region = growth.grow(rings);
         let whole = (0..n).all(|v| region[v] || fixed[v] || rings[v].is_none());
         pos.copy_from_slice(&original);
         let movable: Vec<bool> = (0..n).map(|v| region[v] && !fixed[v] && rings[v].is_some()).collect();
-        let uniform = convex_combination_solve(pos, &rings, &movable);
+        let uniform = convex_combination_solve(pos, rings, &movable);
         // The solve unties the region's tangles but can fold faces at its rim, where the
         // region's outline is not convex at the scale of its faces; single-vertex kernel moves
         // fix part of those, so fewer and smaller attempts are needed.
         let mut left = folded_faces(pos, faces);
         if !left.is_empty() {
-            report.kernel_moves += kernel_untangle(pos, faces, &rings, fixed);
+            report.kernel_moves += kernel_untangle(pos, faces, rings, fixed);
             left = folded_faces(pos, faces);
         }
         if best.as_ref().map_or(true, |(b, ..)| left.len() < *b) {
@@ -173,7 +213,7 @@ pub fn untangle(pos: &mut [[f64; 2]], faces: &[[u32; 3]], fixed: &[bool], radius
             restarts += 1;
             report.restarts = restarts;
             original.copy_from_slice(pos);
-            growth = RegionGrowth::new(&left, faces, &original, &rings, radius);
+            growth = RegionGrowth::new(&left, faces, &original, rings, radius);
             round_start = left;
             attempt = 0;
         } else if attempt >= MAX_REGION_ATTEMPTS {
