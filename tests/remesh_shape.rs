@@ -60,13 +60,13 @@ fn distance_to_boundary(mesh: &TriMesh, p: [f64; 3]) -> f64 {
 
 
 /// The shape stage against the area-only remesh of the same map.
-fn check(name: &str) {
-    check_with(name, 0.04);
+fn check(name: &str) -> capmesh::remesh::RemeshReport {
+    check_with(name, 0.04)
 }
 
 /// [`check`] with a bound on `d_face_rel` (the issue's: 0.035, and 0.08 on the bird skull and
 /// the hand, whose map is the most anisotropic; these bounds leave a margin).
-fn check_with(name: &str, max_d_face: f64) {
+fn check_with(name: &str, max_d_face: f64) -> capmesh::remesh::RemeshReport {
     let mesh = load(name);
     let (shaped, rep) = run(&mesh, Optimize::ShapeAndArea);
     let (plain, plain_rep) = run(&mesh, Optimize::Area);
@@ -88,7 +88,9 @@ fn check_with(name: &str, max_d_face: f64) {
     assert!(stage.iterations > 0 && stage.after.share_below_30 <= stage.before.share_below_30.max(0.005), "{name}: {stage:?}");
     assert_eq!(validate(&shaped).unwrap().0, validate(&mesh).unwrap().0, "{name}: topology changed");
     assert!(a.share_below_30 <= 0.04, "{name}: {:.3} of the faces have an angle below 30 degrees", a.share_below_30);
-    assert!(a.mean_min_angle_deg >= 45.0, "{name}: mean smallest angle {:.1}", a.mean_min_angle_deg);
+    // The bound is 48 degrees on every shared mesh (48.1 at worst at the last
+    // measurement); the margin is for rounding differences between builds.
+    assert!(a.mean_min_angle_deg >= 47.5, "{name}: mean smallest angle {:.1}", a.mean_min_angle_deg);
     // The last pass removes slivers below 15 degrees where a flip or move can (15.3 degrees
     // at worst on the shared meshes); the bound leaves a margin for rounding differences.
     assert!(a.min_angle_deg >= 12.0, "{name}: smallest angle {:.1}", a.min_angle_deg);
@@ -113,6 +115,7 @@ fn check_with(name: &str, max_d_face: f64) {
         let worst = boundary_vertices(&shaped).iter().map(|&v| distance_to_boundary(&mesh, shaped.vertices[v])).fold(0.0, f64::max);
         assert!(worst < 1e-9 * diag, "{name}: a boundary vertex is {worst} off the input's boundary");
     }
+    rep
 }
 
 #[test]
@@ -125,14 +128,16 @@ fn left_ventricle() {
     check("open_lv_endo_rabbit_chaste.obj.gz");
 }
 
+/// Nearly a cap already: its pulled-back grid is near-isotropic and is kept as the start.
 #[test]
 fn meg_helmet() {
-    check("open_meg_helmet_babysquid_mne.obj.gz");
+    assert_eq!(check("open_meg_helmet_babysquid_mne.obj.gz").shape.start, capmesh::remesh::shape::Start::Grid);
 }
 
+/// The grid's lift is stretched: the shape stage starts from the isotropic sample.
 #[test]
 fn closed_bunny() {
-    check("closed_bunny_npm.obj.gz");
+    assert_eq!(check("closed_bunny_npm.obj.gz").shape.start, capmesh::remesh::shape::Start::Sample);
 }
 
 /// Thin bony ridges: the equalized remesh crosses itself there before the last pass.

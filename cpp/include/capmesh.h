@@ -330,7 +330,7 @@ typedef struct capmesh_v1_remesh_options {
    */
   uint32_t relax_iterations;
   /**
-   * Polish iterations of the shape stage (joint area and shape steps). Default 70.
+   * Polish iterations of the shape stage (joint area and shape steps). Default 100.
    */
   uint32_t polish_iterations;
   /**

@@ -92,7 +92,7 @@ pub struct capmesh_v1_remesh_options {
     /// Relaxation iterations of the shape stage (edge flips and tangential relaxation on the
     /// surface). Default 40.
     pub relax_iterations: u32,
-    /// Polish iterations of the shape stage (joint area and shape steps). Default 70.
+    /// Polish iterations of the shape stage (joint area and shape steps). Default 100.
     pub polish_iterations: u32,
     /// Weight of the shape term against the area term in the polish, finite and >= 0 (larger:
     /// better angles, less equal areas). Default 0.1.

@@ -2,9 +2,11 @@
 //! latitude/longitude mesh of the cap `Z >= Z*`, pull it back onto the surface.
 
 pub(crate) mod equalize;
+pub(crate) mod from_cap;
 pub(crate) mod grid;
 pub(crate) mod locate;
 pub(crate) mod pullback;
+pub(crate) mod sample;
 pub mod shape;
 pub(crate) mod sizing;
 pub(crate) mod transfer;
@@ -241,102 +243,48 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     };
     // The inverse map, its point location built once for the pull-back and the shape stage.
     let inverse = map.inverse(mesh)?;
-    let no_face = || Error::Unsupported("the parameterized mesh has no face to pull back from".into());
-    let top_faces: Vec<[u32; 3]> = (0..mesh.n_faces()).filter(|f| !map.bottom_faces.contains(f)).map(|f| mesh.faces[f]).collect();
-    // The rim (the cap grid's last ring) and the bottom stay where the pull-back put them.
-    let rim = cap.vertices.iter().rev().take_while(|p| Some(p[2]) == cap.vertices.last().map(|q| q[2])).count();
-    let first_fixed = cap.vertices.len() - rim;
-    // Each cap vertex's point in the plane of the map, where the pull-back locates it and
-    // the equalization moves it. The planar map covers the polygon of its boundary (an open
-    // surface's boundary, a closed one's punctured quad), inscribed in the rim: cap points
-    // near the rim are moved inside it ([`pullback::rim_band_into_polygon`]).
-    // The input's boundary vertices (none on a closed surface): the rim polygon and the track.
     let input_boundary = is_boundary_vertex(mesh);
-    let (grid_mesh, planar, mut positions, in_plane) = if closed {
-        let grid = grid::close_bottom(cap);
-        let split = grid.first_bottom_vertex.min(grid.mesh.vertices.len());
-        let mut planar: Vec<[f64; 2]> = grid.mesh.vertices.iter().map(|&x| stereographic(x)).collect();
-        let quad: Vec<u32> = map.bottom_faces.iter().filter_map(|&f| mesh.faces.get(f)).flatten().copied().collect();
-        let (corners, rim_radius) = polygon_of(quad.into_iter(), &map.plane);
-        pullback::rim_band_into_polygon(&mut planar[..split], &corners, rim_radius);
-        let positions = pullback::pull_back_closed_from(mesh, &map, &grid, &planar[..split]).ok_or_else(no_face)?;
-        (grid.mesh, planar, positions, split)
-    } else {
-        let mut planar: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
-        let (corners, rim_radius) = polygon_of((0..mesh.n_vertices() as u32).filter(|&v| input_boundary[v as usize]), &map.plane);
-        pullback::rim_band_into_polygon(&mut planar, &corners, rim_radius);
-        let positions = planar.par_iter().map(|&q| inverse.locate_plane(q).map(|p| p.position)).collect::<Option<Vec<_>>>().ok_or_else(no_face)?;
-        let n = cap.vertices.len();
-        (cap, planar, positions, n)
-    };
-    let pullback_seconds = t_pull.elapsed().as_secs_f64();
-    let n = grid_mesh.vertices.len();
-    let mut fixed: Vec<bool> = (0..n).map(|v| v >= first_fixed).collect();
-    let mut planar = planar;
-    let mut faces = grid_mesh.faces;
     let shaped = options.optimize == Optimize::ShapeAndArea && matches!(options.grid, CapGrid::Uniform { .. });
-    let t_shape = Instant::now();
-    let mut shape_report = shape::ShapeReport::default();
-    let mut has_plane: Vec<bool> = (0..n).map(|v| v < in_plane).collect();
-    let mut face_targets: Vec<f64> = Vec::new();
-    // The punctured quad's area against a remesh face's: the bottom is merged only when the
-    // quad is no larger than one face (on a coarse input the quad is a sizeable part of the
-    // surface, and the ring above the rim could not reach across it).
-    let quad_area: f64 = map.bottom_faces.iter().filter_map(|&f| mesh.faces.get(f)).map(|f| triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize])).sum();
-    let surface_area: f64 = mesh.faces.iter().map(|f| triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize])).sum();
-    if shaped && closed && quad_area * faces.len() as f64 <= surface_area {
-        // The rim ring and the bottom disk become one vertex on the punctured quad (the disk's
-        // centre), fanned to the ring above ([`shape::bottom`]).
-        let centre = positions.get(in_plane).or(positions.get(first_fixed)).copied();
-        if let Some((f, p, x)) = centre.and_then(|c| shape::bottom::merge_bottom(&faces, &planar, &positions, first_fixed, c)) {
-            faces = f;
-            planar = p;
-            positions = x;
-            has_plane = (0..positions.len()).map(|v| v < first_fixed).collect();
-            fixed = (0..positions.len()).map(|v| v >= first_fixed).collect();
-        }
-    }
-    if shaped {
-        progress::check(progress, Stage::Remesh, 0.3, "shaping the triangles")?;
-        let lift = shape::state::SurfaceLift::new(&inverse);
-        let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &input_boundary) };
-        let density = sizing::vertex_density(mesh, options.shape.sizing, faces.len());
-        let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed, density: density.as_deref() };
-        let (new_faces, stays, planar_points, targets, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
-        faces = new_faces;
-        fixed = stays;
-        has_plane = planar_points;
-        face_targets = targets;
-        shape_report = report;
-    }
-    let shape_seconds = t_shape.elapsed().as_secs_f64();
-    progress::check(progress, Stage::Remesh, 0.5, "equalizing the areas")?;
-    let t_eq = Instant::now();
-    let sweeps = match options.optimize {
-        Optimize::None => 0,
-        _ if shaped => options.shape.area_sweeps,
-        _ => options.area_equalization,
-    };
-    // Targets: the cap triangles' areas while the cap grid's connectivity is kept; the
-    // sizing's (equal areas by default) once the shape stage has changed it.
-    let target: Vec<f64> = if shaped {
-        face_targets
+    // The isotropic sample of the cap for the shape stage ([`sample`]); the grid when the
+    // sample cannot be made, when the pulled-back grid is already near-isotropic, or when the
+    // sample's remesh keeps crossing or sliver faces.
+    let sampled = if shaped {
+        // The polygon the planar map covers (as in the pull-back).
+        let (corners, rim_radius) = if closed {
+            polygon_of(map.bottom_faces.iter().filter_map(|&f| mesh.faces.get(f)).flatten().copied(), &map.plane)
+        } else {
+            polygon_of((0..mesh.n_vertices() as u32).filter(|&v| input_boundary[v as usize]), &map.plane)
+        };
+        let place = |points: &[[f64; 3]]| -> Vec<Option<[f64; 3]>> {
+            let mut q: Vec<[f64; 2]> = points.iter().map(|&x| stereographic(x)).collect();
+            pullback::rim_band_into_polygon(&mut q, &corners, rim_radius);
+            q.par_iter().map(|&q| inverse.locate_plane(q).map(|p| p.position)).collect()
+        };
+        let surface_area: f64 = mesh.faces.iter().map(|f| triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize])).sum();
+        sample::shape_start(&cap, surface_area, &place)
     } else {
-        faces.iter().map(|f| triangle_area(grid_mesh.vertices[f[0] as usize], grid_mesh.vertices[f[1] as usize], grid_mesh.vertices[f[2] as usize])).collect()
+        None
     };
-    let equalization = equalize::equalize_areas(mesh, &top_faces, &map.plane, &faces, &target, &fixed, &mut planar, &mut positions, sweeps);
-    let equalize_seconds = t_eq.elapsed().as_secs_f64();
-    // The equalization can bend faces through their neighbours where the surface is sharp at
-    // the remesh's scale: crossing faces are untangled last ([`shape::uncross`]).
-    let mut uncross_report = shape::uncross::UncrossReport::default();
-    if shaped {
-        let lift = shape::state::SurfaceLift::new(&inverse);
-        let role: Vec<shape::state::Role> = (0..positions.len()).map(|v| if fixed[v] || !has_plane[v] { shape::state::Role::Fixed } else { shape::state::Role::Free }).collect();
-        let orientation = shape::state::planar_orientation(&faces, &planar, &has_plane, &role);
-        let mut state = shape::state::Shaping { faces, plane: planar, position: positions, hint: vec![u32::MAX; has_plane.len()], role, has_plane: has_plane.clone(), orientation };
-        uncross_report = shape::uncross::uncross(&mut state, &lift, options.shape.crease_deg.to_radians());
-        (faces, planar, positions) = (state.faces, state.plane, state.position);
-    }
+    let sample_seconds = t_pull.elapsed().as_secs_f64();
+    let ctx = from_cap::Context { mesh, map: &map, inverse: &inverse, options, closed, shaped, input_boundary: &input_boundary };
+    let mut result = match sampled {
+        Some(sample) => {
+            let mut first = from_cap::pull_back_and_optimize(&ctx, sample, progress)?;
+            first.shape.start = shape::Start::Sample;
+            // Crossing faces and slivers below 15 degrees that the last pass left: where the
+            // map is not resolved at the remesh's scale the grid's rows can fare better.
+            let flaws = |r: &from_cap::FromCap| (r.shape.uncross.after, r.shape.uncross.slivers_after);
+            if flaws(&first) != (0, 0) {
+                let second = from_cap::pull_back_and_optimize(&ctx, cap, progress)?;
+                if flaws(&second) < flaws(&first) { second } else { first }
+            } else {
+                first
+            }
+        }
+        None => from_cap::pull_back_and_optimize(&ctx, cap, progress)?,
+    };
+    result.pullback_seconds += sample_seconds;
+    let from_cap::FromCap { faces, planar, positions, has_plane, shape: shape_report, equalization, pullback_seconds, shape_seconds, equalize_seconds } = result;
     let points = if locate { transfer::surface_points(&inverse, &planar, &has_plane, &positions) } else { Vec::new() };
     let out = TriMesh::new(positions, faces);
     let t_metrics = Instant::now();
@@ -345,7 +293,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     let report = RemeshReport {
         param: map.report,
         optimize: options.optimize,
-        shape: shape::ShapeReport { uncross: uncross_report, ..shape_report },
+        shape: shape_report,
         area_equalization: equalization,
         quality,
         seconds: start.elapsed().as_secs_f64(),

@@ -12,6 +12,8 @@
 //!    kept (`boundary`); optionally edge splits and collapses (`resample`);
 //! 2. polish iterations: angle flips and a joint area-and-shape Gauss-Newton step (`polish`).
 //!
+//! The stage starts from the pulled-back cap grid or, where that lift is stretched, from an
+//! isotropic sample of the surface (`super::sample`, chosen by `super::remesh`).
 //! A closed surface's rim and bottom disk may first be merged into one vertex (`bottom`).
 //! Every vertex stays exactly on the input surface (it is always the lift of a planar point)
 //! and the planar mesh stays an embedding. The area equalization (`super::equalize`) runs
@@ -40,8 +42,8 @@ pub struct ShapeOptions {
     /// "Remesh shape").
     pub relax_iterations: usize,
     /// Polish iterations (angle flips, then a joint area and shape step of every vertex): the
-    /// polish also equalizes the areas. Default 70 (60 left `d_face_relative` 0.0352 on the
-    /// bunny and 0.081 on the bird skull; docs/method.md, "Remesh shape").
+    /// polish also equalizes the areas. Default 100 (70 left `d_face_relative` 0.0353 on the
+    /// bunny from the isotropic start; docs/method.md, "Remesh shape").
     pub polish_iterations: usize,
     /// Split long and collapse short edges in the first half of the relaxation
     /// (`resample`), where the map is resolved at the remesh's scale. Default on: it raised
@@ -64,7 +66,7 @@ pub struct ShapeOptions {
 
 impl Default for ShapeOptions {
     fn default() -> Self {
-        Self { relax_iterations: 40, polish_iterations: 70, resample: true, shape_weight: 0.1, area_sweeps: 0, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform }
+        Self { relax_iterations: 40, polish_iterations: 100, resample: true, shape_weight: 0.1, area_sweeps: 0, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform }
     }
 }
 
@@ -106,9 +108,24 @@ impl ShapeOptions {
     }
 }
 
+/// The points the shape stage started from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Start {
+    /// The uniform cap grid pulled back (near-isotropic already, or the sample's remesh kept
+    /// crossing or sliver faces that the grid's did not).
+    #[default]
+    Grid,
+    /// An isotropic Poisson-disk sample of the surface (`remesh::sample`, docs/method.md
+    /// section 18).
+    Sample,
+}
+
 /// What the shape stage did.
 #[derive(Debug, Clone, Copy, Default, serde::Serialize)]
 pub struct ShapeReport {
+    /// The points it started from.
+    pub start: Start,
     /// Iterations made.
     pub iterations: usize,
     /// Edge flips over all iterations.
@@ -223,7 +240,7 @@ pub(crate) fn optimize_shape(
     let mut cycle: Option<(Vec<u32>, Vec<u32>)> = None;
     let mut flipper: Option<flips::Flipper> = None;
     for it in 0..lloyd + options.polish_iterations {
-        let resampled = options.resample && it < lloyd / 2 && target_len > 0.0;
+        let resampled = options.resample && it < std::env::var("EXP_RS").ok().and_then(|s| s.parse::<usize>().ok()).unwrap_or(lloyd / 2) && target_len > 0.0;
         if resampled {
             // Splits and collapses balance at a slightly different count than asked for:
             // the target length follows the face count back to the pulled-back mesh's.
