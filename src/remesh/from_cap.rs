@@ -3,7 +3,7 @@
 //! sections 15 and 18): what [`super::remesh`] runs on the uniform or latitude/longitude grid,
 //! or on the isotropic sample of [`super::sample`] and then, if that fails, on the grid.
 
-use super::{equalize, grid, polygon_of, pullback, shape, sizing, Optimize, RemeshOptions};
+use super::{equalize, grid, polygon_of, pullback, sample, shape, sizing, Optimize, RemeshOptions};
 use crate::cap::{stereographic, CapMap, InverseMap};
 use crate::error::Error;
 use crate::mesh::geometry::triangle_area;
@@ -51,6 +51,52 @@ pub(crate) struct FromCap {
     pub shape_seconds: f64,
     /// Seconds of the area equalization.
     pub equalize_seconds: f64,
+    /// The remesh's mean smallest angle (degrees).
+    pub mean_min_angle_deg: f64,
+}
+
+/// The mean smallest angle (degrees) a remesh from a start must reach, with no crossing face
+/// and no sliver left, for the other starts not to be tried: the bar of issue 26.
+const GOOD_MEAN_ANGLE_DEG: f64 = 48.0;
+
+/// The shape stage's remesh from the best start (docs/method.md section 18, "Isotropic
+/// start"): `cap`'s lift when it is near-isotropic; else isotropic samples of the surface
+/// (`place` lifts cap points, `surface_area` is the input's), then `cap` itself, until a remesh
+/// has no crossing face, no sliver and a mean smallest angle of [`GOOD_MEAN_ANGLE_DEG`]; of
+/// those made, the one with the fewest crossing faces, then slivers, then the highest mean
+/// smallest angle is kept.
+pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>, surface_area: f64, progress: &dyn Progress) -> Result<FromCap, Error> {
+    let key = |r: &FromCap| (r.shape.uncross.after, r.shape.uncross.slivers_after, -r.mean_min_angle_deg);
+    let good = |r: &FromCap| r.shape.uncross.after == 0 && r.shape.uncross.slivers_after == 0 && r.mean_min_angle_deg >= GOOD_MEAN_ANGLE_DEG;
+    let mut best: Option<FromCap> = None;
+    let keep = |r: FromCap, best: &mut Option<FromCap>| {
+        if best.as_ref().map_or(true, |b| key(&r) < key(b)) {
+            *best = Some(r);
+        }
+    };
+    let t = Instant::now();
+    let mut sample_seconds = 0.0;
+    if !sample::grid_is_isotropic(&cap, place) {
+        sample_seconds += t.elapsed().as_secs_f64();
+        for variant in 0..sample::SAMPLES {
+            let t = Instant::now();
+            let Some(start) = sample::isotropic_cap(&cap, surface_area, place, variant) else { break };
+            sample_seconds += t.elapsed().as_secs_f64();
+            let mut r = pull_back_and_optimize(ctx, start, progress)?;
+            r.shape.start = shape::Start::Sample;
+            keep(r, &mut best);
+            if best.as_ref().is_some_and(good) {
+                break;
+            }
+        }
+    }
+    if !best.as_ref().is_some_and(good) {
+        let r = pull_back_and_optimize(ctx, cap, progress)?;
+        keep(r, &mut best);
+    }
+    let mut best = best.ok_or_else(|| Error::Internal("no remesh start was tried".into()))?;
+    best.pullback_seconds += sample_seconds;
+    Ok(best)
 }
 
 /// Pull `cap` (rim ring last) back onto the surface of `ctx` and run the stages after it.
@@ -151,5 +197,6 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
         uncross_report = shape::uncross::uncross(&mut state, &lift, options.shape.crease_deg.to_radians());
         (faces, planar, positions) = (state.faces, state.plane, state.position);
     }
-    Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds })
+    let mean_min_angle_deg = crate::metrics::angles::angle_quality_of(&positions, &faces).mean_min_angle_deg;
+    Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds, mean_min_angle_deg })
 }

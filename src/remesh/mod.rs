@@ -236,7 +236,6 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     let closed = map.report.kind != SurfaceKind::OpenDisk;
     let z_star = map.report.z_star.ok_or_else(|| Error::InvalidOption("remeshing needs a spherical cap domain, not the planar disk".into()))?;
     progress::check(progress, Stage::Remesh, 0.0, "pulling the cap mesh back")?;
-    let t_pull = Instant::now();
     let cap = match options.grid {
         CapGrid::Uniform { faces } => grid::uniform_cap(z_star, faces.max(1)),
         CapGrid::LatLong { rings, sectors } => grid::lat_long(z_star, rings, sectors),
@@ -245,11 +244,11 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     let inverse = map.inverse(mesh)?;
     let input_boundary = is_boundary_vertex(mesh);
     let shaped = options.optimize == Optimize::ShapeAndArea && matches!(options.grid, CapGrid::Uniform { .. });
-    // The isotropic sample of the cap for the shape stage ([`sample`]); the grid when the
-    // sample cannot be made, when the pulled-back grid is already near-isotropic, or when the
-    // sample's remesh keeps crossing or sliver faces.
-    let sampled = if shaped {
-        // The polygon the planar map covers (as in the pull-back).
+    let ctx = from_cap::Context { mesh, map: &map, inverse: &inverse, options, closed, shaped, input_boundary: &input_boundary };
+    let result = if shaped {
+        // The shape stage starts from an isotropic sample of the surface where the grid's
+        // lift is stretched ([`from_cap::from_best_start`]). Cap points are lifted as in the
+        // pull-back: inside the polygon the planar map covers.
         let (corners, rim_radius) = if closed {
             polygon_of(map.bottom_faces.iter().filter_map(|&f| mesh.faces.get(f)).flatten().copied(), &map.plane)
         } else {
@@ -261,30 +260,11 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
             q.par_iter().map(|&q| inverse.locate_plane(q).map(|p| p.position)).collect()
         };
         let surface_area: f64 = mesh.faces.iter().map(|f| triangle_area(mesh.vertices[f[0] as usize], mesh.vertices[f[1] as usize], mesh.vertices[f[2] as usize])).sum();
-        sample::shape_start(&cap, surface_area, &place)
+        from_cap::from_best_start(&ctx, cap, &place, surface_area, progress)?
     } else {
-        None
+        from_cap::pull_back_and_optimize(&ctx, cap, progress)?
     };
-    let sample_seconds = t_pull.elapsed().as_secs_f64();
-    let ctx = from_cap::Context { mesh, map: &map, inverse: &inverse, options, closed, shaped, input_boundary: &input_boundary };
-    let mut result = match sampled {
-        Some(sample) => {
-            let mut first = from_cap::pull_back_and_optimize(&ctx, sample, progress)?;
-            first.shape.start = shape::Start::Sample;
-            // Crossing faces and slivers below 15 degrees that the last pass left: where the
-            // map is not resolved at the remesh's scale the grid's rows can fare better.
-            let flaws = |r: &from_cap::FromCap| (r.shape.uncross.after, r.shape.uncross.slivers_after);
-            if flaws(&first) != (0, 0) {
-                let second = from_cap::pull_back_and_optimize(&ctx, cap, progress)?;
-                if flaws(&second) < flaws(&first) { second } else { first }
-            } else {
-                first
-            }
-        }
-        None => from_cap::pull_back_and_optimize(&ctx, cap, progress)?,
-    };
-    result.pullback_seconds += sample_seconds;
-    let from_cap::FromCap { faces, planar, positions, has_plane, shape: shape_report, equalization, pullback_seconds, shape_seconds, equalize_seconds } = result;
+    let from_cap::FromCap { faces, planar, positions, has_plane, shape: shape_report, equalization, pullback_seconds, shape_seconds, equalize_seconds, .. } = result;
     let points = if locate { transfer::surface_points(&inverse, &planar, &has_plane, &positions) } else { Vec::new() };
     let out = TriMesh::new(positions, faces);
     let t_metrics = Instant::now();

@@ -13,7 +13,7 @@
 //! triangulated by Delaunay in the stereographic plane (an embedding of the cap). The
 //! sample has no preferred direction: what is left to the shape stage is local.
 
-use crate::mesh::geometry::{norm, sub};
+use crate::mesh::geometry::sub;
 use crate::mesh::TriMesh;
 use crate::omt::triangulation::{RegularTriangulation, NONE};
 
@@ -29,8 +29,12 @@ const CANDIDATES_PER_VERTEX: usize = 12;
 /// distortion stretches lengths by up to about 3 either way.
 const NEAR_ON_CAP: f64 = 4.0;
 
-/// Bisection steps on the spacing.
+/// Bisection steps on the spacing at most.
 const SPACING_STEPS: usize = 24;
+
+/// The bisection stops when the sample's count is within this fraction's inverse of the
+/// grid's (1/400: 6 vertices of 2500).
+const COUNT_TOLERANCE: usize = 400;
 
 /// A pulled-back grid whose faces' mean smallest angle is at least this (degrees) is kept as
 /// the shape stage's start: its rows are nearly equilateral already (the map's angle
@@ -38,23 +42,23 @@ const SPACING_STEPS: usize = 24;
 /// helmet: 51.0 against 49.2 degrees; the other bundled meshes' grids have 25.7 to 37.3).
 pub(crate) const GRID_KEPT_ANGLE_DEG: f64 = 45.0;
 
-/// The shape stage's start: [`isotropic_cap`] of `grid`, or `None` when the pulled-back grid
-/// is near-isotropic already ([`GRID_KEPT_ANGLE_DEG`]) or the sample cannot be made.
-pub(crate) fn shape_start(grid: &TriMesh, surface_area: f64, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>) -> Option<TriMesh> {
+/// Samples tried (each from another stretch of the candidate sequence) before the grid, while
+/// their remeshes keep crossing faces or slivers.
+pub(crate) const SAMPLES: usize = 2;
+
+/// Whether the lift of `grid` is near-isotropic already ([`GRID_KEPT_ANGLE_DEG`]): then the
+/// shape stage starts from it.
+pub(crate) fn grid_is_isotropic(grid: &TriMesh, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>) -> bool {
     let lifted: Option<Vec<[f64; 3]>> = place(&grid.vertices).into_iter().collect();
-    if let Some(lifted) = lifted {
-        if crate::metrics::angles::angle_quality_of(&lifted, &grid.faces).mean_min_angle_deg >= GRID_KEPT_ANGLE_DEG {
-            return None;
-        }
-    }
-    isotropic_cap(grid, surface_area, place)
+    lifted.is_some_and(|lifted| crate::metrics::angles::angle_quality_of(&lifted, &grid.faces).mean_min_angle_deg >= GRID_KEPT_ANGLE_DEG)
 }
 
 /// The cap mesh `grid` (rim ring last) with its interior vertices replaced by a Poisson-disk
 /// sample of the surface of about as many vertices. `place` lifts cap points onto the surface
 /// (`None` where the map has no point). `None` when the sample cannot be triangulated with the
-/// rim as its hull (then the grid is used as it is).
-fn isotropic_cap(grid: &TriMesh, surface_area: f64, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>) -> Option<TriMesh> {
+/// rim as its hull (then the grid is used as it is). `variant` picks the stretch of the
+/// candidate sequence (another sample of the same surface).
+pub(crate) fn isotropic_cap(grid: &TriMesh, surface_area: f64, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>, variant: usize) -> Option<TriMesh> {
     let z_rim = grid.vertices.last()?[2];
     let rim = grid.vertices.iter().rev().take_while(|p| p[2] == z_rim).count();
     // The grid's rings by height, lowest first: the lowest `KEPT_RINGS` stay as they are.
@@ -81,8 +85,9 @@ fn isotropic_cap(grid: &TriMesh, surface_area: f64, place: &dyn Fn(&[[f64; 3]]) 
     let (a1, a2) = (1.0 / g, 1.0 / (g * g));
     let cap_points: Vec<[f64; 3]> = (0..count)
         .map(|i| {
-            let u = (0.5 + a1 * i as f64).fract();
-            let v = (0.5 + a2 * i as f64).fract();
+            let i = (i + variant * count) as f64;
+            let u = (0.5 + a1 * i).fract();
+            let v = (0.5 + a2 * i).fract();
             let z = z_min + (1.0 - z_min) * u;
             let r = ((1.0 - z) * (1.0 + z)).max(0.0).sqrt();
             let phi = std::f64::consts::TAU * v;
@@ -96,11 +101,10 @@ fn isotropic_cap(grid: &TriMesh, surface_area: f64, place: &dyn Fn(&[[f64; 3]]) 
     // Cap lengths against surface lengths: the map's mean length scale.
     let scale = (std::f64::consts::TAU * (1.0 - z_rim) / surface_area).sqrt();
     // The spacing: bisected (in log) until the greedy sample has the grid's interior count.
-    let area_scale = {
-        let (lo, hi) = bounds(candidates.iter().map(|c| c.1).chain(rim_lifted.iter().copied()));
-        norm(sub(hi, lo)).max(f64::MIN_POSITIVE)
-    };
-    let (mut lo, mut hi) = (1e-6 * area_scale, area_scale);
+    // Bracketed around the spacing of a hexagonal packing of the interior count on the
+    // surface's area (a greedy sample packs less densely, at a somewhat smaller spacing).
+    let hexagonal = (surface_area / (0.75f64.sqrt() * interior as f64)).sqrt();
+    let (mut lo, mut hi) = (0.25 * hexagonal, 2.0 * hexagonal);
     let mut best: Option<Vec<usize>> = None;
     for _ in 0..SPACING_STEPS {
         let r = (lo * hi).sqrt();
@@ -110,9 +114,12 @@ fn isotropic_cap(grid: &TriMesh, surface_area: f64, place: &dyn Fn(&[[f64; 3]]) 
         } else {
             hi = r;
         }
-        let better = best.as_ref().map_or(true, |b| accepted.len().abs_diff(interior) < b.len().abs_diff(interior));
-        if better {
+        let off = accepted.len().abs_diff(interior);
+        if best.as_ref().map_or(true, |b| off < b.len().abs_diff(interior)) {
             best = Some(accepted);
+        }
+        if off * COUNT_TOLERANCE <= interior {
+            break;
         }
     }
     let accepted = best?;
@@ -134,11 +141,6 @@ fn isotropic_cap(grid: &TriMesh, surface_area: f64, place: &dyn Fn(&[[f64; 3]]) 
     });
     let faces = tri.triangles.iter().map(|&[a, b, c]| if grid_ccw { [a, b, c] } else { [a, c, b] }).collect();
     Some(TriMesh::new(vertices, faces))
-}
-
-/// Bounding box of `points`.
-fn bounds(points: impl Iterator<Item = [f64; 3]>) -> ([f64; 3], [f64; 3]) {
-    points.fold(([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]), |(lo, hi), p| (std::array::from_fn(|k| lo[k].min(p[k])), std::array::from_fn(|k| hi[k].max(p[k]))))
 }
 
 /// The candidates (in order) accepted greedily at 3-D distance at least `r` from every accepted
@@ -182,6 +184,7 @@ fn poisson_disk(candidates: &[(usize, [f64; 3])], cap: &[[f64; 3]], fixed: &[[f6
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::geometry::norm;
     use crate::mesh::validate;
     use crate::mesh::SurfaceKind;
     use crate::remesh::grid::uniform_cap;
@@ -205,8 +208,8 @@ mod tests {
         let grid = uniform_cap(z0, 2000);
         let place = |p: &[[f64; 3]]| p.iter().map(|&x| Some(x)).collect::<Vec<_>>();
         let area = std::f64::consts::TAU * (1.0 - z0);
-        assert!(shape_start(&grid, area, &place).is_none(), "the cap's own grid is near-isotropic");
-        let sample = isotropic_cap(&grid, area, &place).expect("a sample of the cap");
+        assert!(grid_is_isotropic(&grid, &place), "the cap's own grid is near-isotropic");
+        let sample = isotropic_cap(&grid, area, &place, 0).expect("a sample of the cap");
         assert_eq!(validate(&sample).unwrap().0, SurfaceKind::OpenDisk);
         let rim = grid.vertices.iter().rev().take_while(|p| p[2] == z0).count();
         assert_eq!(sample.vertices[sample.vertices.len() - rim..], grid.vertices[grid.vertices.len() - rim..]);
@@ -228,7 +231,8 @@ mod tests {
         let stretch = |x: [f64; 3]| [3.0 * x[0], x[1] / 3.0, x[2]];
         let place = |p: &[[f64; 3]]| p.iter().map(|&x| Some(stretch(x))).collect::<Vec<_>>();
         let area = std::f64::consts::TAU * (1.0 - z0);
-        let sample = shape_start(&grid, area, &place).expect("the stretched grid is not kept");
+        assert!(!grid_is_isotropic(&grid, &place), "the stretched grid is not kept");
+        let sample = isotropic_cap(&grid, area, &place, 1).expect("a sample");
         // The interior points (the rim ring is the grid's in both).
         let rim = grid.vertices.iter().rev().take_while(|p| p[2] == z0).count();
         let lift = |m: &TriMesh| m.vertices[..m.vertices.len() - rim].iter().map(|&x| stretch(x)).collect::<Vec<_>>();

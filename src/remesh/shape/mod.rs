@@ -112,8 +112,8 @@ impl ShapeOptions {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Start {
-    /// The uniform cap grid pulled back (near-isotropic already, or the sample's remesh kept
-    /// crossing or sliver faces that the grid's did not).
+    /// The uniform cap grid pulled back (near-isotropic already, or its remesh better than
+    /// the samples').
     #[default]
     Grid,
     /// An isotropic Poisson-disk sample of the surface (`remesh::sample`, docs/method.md
