@@ -39,7 +39,6 @@ pub(crate) fn flip_to_max_min_angle(mesh: &mut Shaping, crease: f64) -> usize {
 /// [`flip_to_max_min_angle`]. Returns the number of flips.
 pub(crate) fn flip_valence_then_angle(flipper: &mut Flipper, mesh: &mut Shaping, valence: bool) -> usize {
     let by_valence = if valence { flipper.run(mesh, Criterion::Valence) } else { 0 };
-    if valence && std::env::var("EXP_NOMIN").is_ok() { return by_valence; }
     by_valence + flipper.run(mesh, Criterion::MinAngle)
 }
 
@@ -191,7 +190,7 @@ impl Flipper {
                 };
                 let before = dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0);
                 let after = dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1);
-                after < before && improves(mesh, [a, b, c, d], old, self.cos_crease, Some(std::env::var("EXP_FLOOR").ok().and_then(|s| s.parse::<f64>().ok()).unwrap_or(VALENCE_FLOOR_DEG).to_radians().tan()))
+                after < before && improves(mesh, [a, b, c, d], old, self.cos_crease, Some(VALENCE_FLOOR_DEG.to_radians().tan()))
             }
         }
     }

@@ -240,7 +240,7 @@ pub(crate) fn optimize_shape(
     let mut cycle: Option<(Vec<u32>, Vec<u32>)> = None;
     let mut flipper: Option<flips::Flipper> = None;
     for it in 0..lloyd + options.polish_iterations {
-        let resampled = options.resample && it < std::env::var("EXP_RS").ok().and_then(|s| s.parse::<usize>().ok()).unwrap_or(lloyd / 2) && target_len > 0.0;
+        let resampled = options.resample && it < lloyd / 2 && target_len > 0.0;
         if resampled {
             // Splits and collapses balance at a slightly different count than asked for:
             // the target length follows the face count back to the pulled-back mesh's.

@@ -42,20 +42,7 @@ pub(crate) fn relax_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift
     if !(mass > 0.0) {
         return None;
     }
-    let mut centroid = centroid.map(|c| c / mass);
-    if std::env::var("EXP_UNI").is_ok() {
-        let (mut acc, mut cnt) = ([0.0; 3], 0.0);
-        for &t in ring {
-            for &u in &mesh.faces[t as usize] {
-                if u as usize != v {
-                    let p = mesh.position[u as usize];
-                    for k in 0..3 { acc[k] += p[k]; }
-                    cnt += 1.0;
-                }
-            }
-        }
-        centroid = acc.map(|c| c / cnt);
-    }
+    let centroid = centroid.map(|c| c / mass);
     let nn = norm(normal);
     if !(nn > 0.0) {
         return None;
