@@ -1,7 +1,8 @@
 //! One cap mesh pulled back onto the surface and the stages after it (paper Sec. 4.2; the
 //! shape stage, area equalization and the removal of crossing faces are ours, docs/method.md
 //! sections 15 and 18): what [`super::remesh`] runs on the uniform or latitude/longitude grid,
-//! or on the isotropic sample of [`super::sample`] and then, if that fails, on the grid.
+//! and, for the shape stage, on the starts of [`from_best_start`] in turn (isotropic samples of
+//! [`super::sample`], then the grid) until one meets the quality bar.
 
 use super::{equalize, grid, polygon_of, pullback, sample, shape, sizing, Optimize, RemeshOptions};
 use crate::cap::{stereographic, CapMap, InverseMap};
@@ -75,9 +76,9 @@ pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64
         }
     };
     let t = Instant::now();
-    let mut sample_seconds = 0.0;
-    if !sample::grid_is_isotropic(&cap, place) {
-        sample_seconds += t.elapsed().as_secs_f64();
+    let isotropic = sample::grid_is_isotropic(&cap, place);
+    let mut sample_seconds = t.elapsed().as_secs_f64();
+    if !isotropic {
         for variant in 0..sample::SAMPLES {
             let t = Instant::now();
             let Some(start) = sample::isotropic_cap(&cap, surface_area, place, variant) else { break };

@@ -184,9 +184,10 @@ pub struct RemeshReport {
     pub quality: RemeshMetrics,
     /// Seconds of the whole remeshing (parameterization and quality metrics included).
     pub seconds: f64,
-    /// Seconds spent building the cap grid and pulling it back.
+    /// Seconds spent pulling the cap mesh back (with the isotropic samples' construction).
     pub pullback_seconds: f64,
-    /// Seconds spent in the shape stage.
+    /// Seconds spent in the shape stage of the start kept (the starts tried before it count
+    /// in [`RemeshReport::seconds`] only).
     pub shape_seconds: f64,
     /// Seconds spent in the area equalization.
     pub equalize_seconds: f64,

@@ -43,7 +43,7 @@ const COUNT_TOLERANCE: usize = 400;
 pub(crate) const GRID_KEPT_ANGLE_DEG: f64 = 45.0;
 
 /// Samples tried (each from another stretch of the candidate sequence) before the grid, while
-/// their remeshes keep crossing faces or slivers.
+/// their remeshes miss the quality bar (`super::from_cap::from_best_start`).
 pub(crate) const SAMPLES: usize = 2;
 
 /// Whether the lift of `grid` is near-isotropic already ([`GRID_KEPT_ANGLE_DEG`]): then the
