@@ -4,9 +4,10 @@
 //! onto the punctured quad, two input faces usually smaller than one remesh face: its rim
 //! ring and disk come back as a star of slivers. The shape stage replaces them by a single
 //! vertex on the quad, fanned to the ring of grid vertices around it. That vertex has no
-//! point in the map's plane (the bottom lies outside the planar map), so it stays, its edges
-//! are not flipped, and its faces are checked on the surface only when a neighbour moves;
-//! the neighbours then relax to an even fan.
+//! point in the map's plane (the bottom lies outside the planar map), so it stays, its faces
+//! are checked on the surface only when a neighbour moves, and its edges are flipped by the
+//! last max-min-angle flips only ([`super::flips::flip_to_max_min_angle`]); the neighbours
+//! relax to an even fan.
 
 /// The faces, planar points and positions with every vertex from `first_rim` on (the rim
 /// ring and the bottom disk) merged into one vertex at `centre`; `None` when the merged

@@ -25,9 +25,14 @@ const MAX_PASSES: usize = 8;
 
 /// Flip edges of `mesh` until no flip raises a pair's smallest angle (at most
 /// [`MAX_PASSES`] passes); `crease` is the largest angle (radians) between the normals of the
-/// two faces, before and after, of a flipped edge. Returns the number of flips.
+/// two faces, before and after, of a flipped edge. The spokes and ring of a closed surface's
+/// bottom fan are flipped here too ([`FanFlip`]): not in the iterations, where a spoke flipped
+/// early could strand a ring vertex next to the centre (docs/method.md, "Remesh shape").
+/// Returns the number of flips.
 pub(crate) fn flip_to_max_min_angle(mesh: &mut Shaping, crease: f64) -> usize {
-    Flipper::new(mesh, crease).run(mesh, Criterion::MinAngle)
+    let mut flipper = Flipper::new(mesh, crease);
+    flipper.fans = fans(mesh);
+    flipper.run(mesh, Criterion::MinAngle)
 }
 
 /// A relaxation or polish iteration's flips with `flipper` (its edge table kept from the last
@@ -44,6 +49,28 @@ pub(crate) fn flip_valence_then_angle(flipper: &mut Flipper, mesh: &mut Shaping,
 
 /// Smallest angle (degrees) a valence flip may leave in its pair (unless it was smaller).
 pub(crate) const VALENCE_FLOOR_DEG: f64 = 25.0;
+
+/// What a flip does to a fan (a closed surface's bottom vertex, which has no planar point,
+/// and its neighbours, [`super::bottom`]).
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum FanFlip {
+    /// No fan is involved.
+    No,
+    /// A spoke of the fan centred at this vertex is flipped away: the fan loses a neighbour.
+    Remove(u32),
+    /// An edge of the fan's ring is flipped to a spoke of the fan centred at this vertex.
+    Insert(u32),
+}
+
+/// The planar test of a flip ([`improves`]) by what it does to a fan.
+enum Fan<'a> {
+    /// Both new faces are planar.
+    No,
+    /// The centre and its neighbours: only the new face without the centre is planar.
+    Remove(u32, &'a [u32]),
+    /// Both new faces hold the centre: none is planar.
+    Insert,
+}
 
 /// What a flip must improve.
 #[derive(Clone, Copy, PartialEq)]
@@ -64,6 +91,9 @@ pub(crate) struct Flipper {
     /// Tangent of each face's smallest angle ([`smallest_angle_tan`]).
     face_tan: Vec<f64>,
     cos_crease: f64,
+    /// The neighbours of each vertex without a planar point whose neighbours all have one (a
+    /// closed surface's bottom vertex, [`super::bottom`]): its spokes may be flipped.
+    fans: FastMap<u32, Vec<u32>>,
 }
 
 impl Flipper {
@@ -87,7 +117,22 @@ impl Flipper {
             }
         }
         let face_tan = mesh.faces.iter().map(|f| face_tan(mesh, *f)).collect();
-        Self { edges, valence, regular, face_tan, cos_crease: crease.cos() }
+        Self { edges, valence, regular, face_tan, cos_crease: crease.cos(), fans: Default::default() }
+    }
+
+    /// Whether flipping `(a, b)` (opposite corners `c`, `d`) changes a fan
+    /// ([`FanFlip`]); `None` when it does not and some of the four vertices has no planar
+    /// point (no flip).
+    fn fan_flip(&self, mesh: &Shaping, [a, b, c, d]: [u32; 4]) -> Option<FanFlip> {
+        let fan = |v: u32| !mesh.planar(v) && self.fans.contains_key(&v);
+        match [a, b, c, d].map(|v| mesh.planar(v)) {
+            [true, true, true, true] => Some(FanFlip::No),
+            [false, true, true, true] if fan(a) => Some(FanFlip::Remove(a)),
+            [true, false, true, true] if fan(b) => Some(FanFlip::Remove(b)),
+            [true, true, false, true] if fan(c) => Some(FanFlip::Insert(c)),
+            [true, true, true, false] if fan(d) => Some(FanFlip::Insert(d)),
+            _ => None,
+        }
     }
 
     /// Take the vertices' new positions (the faces unchanged since the last flips).
@@ -117,10 +162,13 @@ impl Flipper {
             let mut this_pass = 0;
             for (i, &(a, b)) in keys.iter().enumerate() {
                 let Some((t1, t2, c, d)) = self.pair(mesh, a, b) else { continue };
-                if c == d || self.edges.contains_key(&(c.min(d), c.max(d))) || ![a, b, c, d].iter().all(|&v| mesh.planar(v)) {
+                let Some(fan_flip) = self.fan_flip(mesh, [a, b, c, d]) else { continue };
+                if c == d || self.edges.contains_key(&(c.min(d), c.max(d))) {
                     continue;
                 }
-                let judged_ahead = pass == 0 && [a, b, c, d].iter().all(|&v| !touched[v as usize]);
+                // A spoke's verdict also depends on the fan's other vertices, which other
+                // spoke flips of the pass change: it is judged afresh.
+                let judged_ahead = pass == 0 && fan_flip == FanFlip::No && [a, b, c, d].iter().all(|&v| !touched[v as usize]);
                 let better = if judged_ahead { ahead[i] } else { self.better(mesh, criterion, [a, b, c, d], [t1, t2]) };
                 if !better {
                     continue;
@@ -129,6 +177,22 @@ impl Flipper {
                     for v in [a, b, c, d] {
                         touched[v as usize] = true;
                     }
+                }
+                match fan_flip {
+                    // The spoke's other end leaves the fan; the opposite corner joins it.
+                    FanFlip::Remove(o) => {
+                        let apex = if o == a { b } else { a };
+                        if let Some(fan) = self.fans.get_mut(&o) {
+                            fan.retain(|&v| v != apex);
+                        }
+                    }
+                    FanFlip::Insert(o) => {
+                        let apex = if o == c { d } else { c };
+                        if let Some(fan) = self.fans.get_mut(&o) {
+                            fan.push(apex);
+                        }
+                    }
+                    FanFlip::No => {}
                 }
                 self.valence[a as usize] -= 1;
                 self.valence[b as usize] -= 1;
@@ -181,8 +245,13 @@ impl Flipper {
     /// by the caller).
     fn better(&self, mesh: &Shaping, criterion: Criterion, [a, b, c, d]: [u32; 4], [t1, t2]: [u32; 2]) -> bool {
         let old = self.face_tan[t1 as usize].min(self.face_tan[t2 as usize]);
+        let fan = match self.fan_flip(mesh, [a, b, c, d]) {
+            Some(FanFlip::Remove(o)) => Fan::Remove(o, self.fans.get(&o).map_or(&[][..], |f| &f[..])),
+            Some(FanFlip::Insert(_)) => Fan::Insert,
+            _ => Fan::No,
+        };
         match criterion {
-            Criterion::MinAngle => improves(mesh, [a, b, c, d], old, self.cos_crease, None),
+            Criterion::MinAngle => improves(mesh, [a, b, c, d], old, self.cos_crease, None, fan),
             Criterion::Valence => {
                 let dev = |v: u32, change: i32| {
                     let e = self.valence[v as usize] + change - self.regular[v as usize];
@@ -190,7 +259,7 @@ impl Flipper {
                 };
                 let before = dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0);
                 let after = dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1);
-                after < before && improves(mesh, [a, b, c, d], old, self.cos_crease, Some(VALENCE_FLOOR_DEG.to_radians().tan()))
+                after < before && improves(mesh, [a, b, c, d], old, self.cos_crease, Some(VALENCE_FLOOR_DEG.to_radians().tan()), fan)
             }
         }
     }
@@ -213,11 +282,33 @@ fn reassign(edges: &mut FastMap<(u32, u32), [u32; 2]>, u: u32, v: u32, from: u32
     }
 }
 
+/// Each fan's centre (a vertex without a planar point whose neighbours all have one) and its
+/// neighbours.
+fn fans(mesh: &Shaping) -> FastMap<u32, Vec<u32>> {
+    let mut fans: FastMap<u32, Vec<u32>> = Default::default();
+    for f in &mesh.faces {
+        for k in 0..3 {
+            if !mesh.planar(f[k]) {
+                fans.entry(f[k]).or_default().extend([f[(k + 1) % 3], f[(k + 2) % 3]]);
+            }
+        }
+    }
+    fans.retain(|_, ring| ring.iter().all(|&v| mesh.planar(v)));
+    for ring in fans.values_mut() {
+        ring.sort_unstable();
+        ring.dedup();
+    }
+    fans
+}
+
 /// Whether flipping edge `(a, b)` of faces `(a, b, c)`, `(b, a, d)` to `(c, a, d)`, `(d, b, c)`
 /// raises the smallest 3-D angle, whose tangent is `old_tan` before the flip (or, with a
 /// `floor_tan`, leaves its tangent at least at the floor's or at the old one), keeps the planar
-/// orientation and stays within the crease bound.
-fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], old_tan: f64, cos_crease: f64, floor_tan: Option<f64>) -> bool {
+/// orientation and stays within the crease bound. A face with a fan's centre is judged on the
+/// surface only (as the centre's moves are): when a spoke is flipped away
+/// ([`Fan::Remove`]), the new face without the centre must be oriented and hold no other
+/// vertex of the fan, so that the fan's ring stays a simple polygon in the plane.
+fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], old_tan: f64, cos_crease: f64, floor_tan: Option<f64>, fan: Fan) -> bool {
     let x = |v: u32| mesh.position[v as usize];
     let p = |v: u32| mesh.plane[v as usize];
     let new_tan = smallest_angle_tan(x(c), x(a), x(d)).min(smallest_angle_tan(x(d), x(b), x(c)));
@@ -229,11 +320,25 @@ fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], old_tan: f64, cos_crease: f6
     if !enough {
         return false;
     }
-    let pair = (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(a), p(b), p(c))).abs()
-        + (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(b), p(a), p(d))).abs();
-    let floor = MIN_PLANAR_SHARE * pair;
-    if !(mesh.oriented(p(c), p(a), p(d), floor) && mesh.oriented(p(d), p(b), p(c), floor)) {
-        return false;
+    if let Fan::Remove(o, ring) = fan {
+        // The new planar face: (d, b, c) when the centre is a, (c, a, d) when it is b.
+        let [x, y, z] = if o == a { [d, b, c] } else { [c, a, d] };
+        let (px, py, pz) = (p(x), p(y), p(z));
+        let scale = norm([py[0] - px[0], py[1] - px[1], 0.0]) * norm([pz[0] - px[0], pz[1] - px[1], 0.0]);
+        if !mesh.oriented(px, py, pz, MIN_PLANAR_SHARE * scale) {
+            return false;
+        }
+        let inside = |q: [f64; 2]| mesh.oriented(px, py, q, 0.0) && mesh.oriented(py, pz, q, 0.0) && mesh.oriented(pz, px, q, 0.0);
+        if ring.iter().any(|&v| v != x && v != y && v != z && inside(p(v))) {
+            return false;
+        }
+    } else if let Fan::No = fan {
+        let pair = (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(a), p(b), p(c))).abs()
+            + (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(b), p(a), p(d))).abs();
+        let floor = MIN_PLANAR_SHARE * pair;
+        if !(mesh.oriented(p(c), p(a), p(d), floor) && mesh.oriented(p(d), p(b), p(c), floor)) {
+            return false;
+        }
     }
     // Neither pair may bend by more than the crease bound; or the new pair bends less than
     // the old one when
@@ -281,6 +386,35 @@ mod tests {
         }
         // Flipping again would lower the smallest angle: nothing more happens.
         assert_eq!(flip_to_max_min_angle(&mut mesh, 60f64.to_radians()), 0);
+    }
+
+    /// A closed surface's bottom vertex (no planar point) with a spoke to a ring vertex next
+    /// to it: the final flips turn the spoke into an edge of the ring (judged on the surface;
+    /// the new planar face keeps the plane's orientation).
+    #[test]
+    fn a_short_spoke_of_the_bottom_fan_is_flipped_away() {
+        // m inside, ring r0..r3 (r0 dented inside the chord r1-r3 in the plane), bottom o.
+        let (m, r0, r1, r2, r3, o) = (0u32, 1u32, 2u32, 3u32, 4u32, 5u32);
+        let plane = vec![[0.0, 0.0], [0.4, 0.0], [0.5, 0.866], [-1.0, 0.0], [0.5, -0.866], [0.0, 0.0]];
+        let position = vec![[0.1, 0.0, 0.8], [0.0, 0.0, 0.0], [0.5, 0.866, 0.0], [-1.0, 0.0, 0.0], [0.5, -0.866, 0.0], [0.0, 0.0, -0.1]];
+        let faces = vec![[m, r0, r1], [m, r1, r2], [m, r2, r3], [m, r3, r0], [o, r1, r0], [o, r2, r1], [o, r3, r2], [o, r0, r3]];
+        let mut role = vec![Role::Free; 6];
+        role[o as usize] = Role::Fixed;
+        let mut has_plane = vec![true; 6];
+        has_plane[o as usize] = false;
+        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 6], role, has_plane, orientation: 1.0 };
+        let smallest = |mesh: &Shaping| mesh.faces.iter().map(|f| face_tan(mesh, *f).atan()).fold(f64::INFINITY, f64::min);
+        let before = smallest(&mesh);
+        assert!(flip_to_max_min_angle(&mut mesh, 170f64.to_radians()) >= 1);
+        assert!(!mesh.faces.iter().any(|f| f.contains(&o) && f.contains(&r0)), "{:?}", mesh.faces);
+        assert!(smallest(&mesh) > before + 0.1, "smallest angle {} from {before}", smallest(&mesh));
+        for f in mesh.faces.iter().filter(|f| !f.contains(&o)) {
+            let [a, b, c] = f.map(|v| mesh.plane[v as usize]);
+            assert!(crate::mesh::geometry::signed_area_2d(a, b, c) > 0.0, "{f:?}");
+        }
+        // The fan still closes the surface: every edge in two faces.
+        let edges = edge_faces(&mesh.faces);
+        assert!(edges.values().all(|t| t[0] != u32::MAX && t[1] != u32::MAX));
     }
 
     #[test]
