@@ -54,6 +54,10 @@ pub(crate) struct FromCap {
     pub equalize_seconds: f64,
     /// The remesh's mean smallest angle (degrees).
     pub mean_min_angle_deg: f64,
+    /// Slivers left whose shortest edge joins two vertices that stay (a closed surface's rim
+    /// ring, bunched on the punctured quad when the quad is larger than a remesh face): every
+    /// start has them, so they do not send [`from_best_start`] to the next one.
+    pub slivers_at_rim: usize,
 }
 
 /// The mean smallest angle (degrees) a remesh from a start must reach, with no crossing face
@@ -68,7 +72,7 @@ const GOOD_MEAN_ANGLE_DEG: f64 = 48.0;
 /// smallest angle is kept.
 pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>, surface_area: f64, progress: &dyn Progress) -> Result<FromCap, Error> {
     let key = |r: &FromCap| (r.shape.uncross.after, r.shape.uncross.slivers_after, -r.mean_min_angle_deg);
-    let good = |r: &FromCap| r.shape.uncross.after == 0 && r.shape.uncross.slivers_after == 0 && r.mean_min_angle_deg >= GOOD_MEAN_ANGLE_DEG;
+    let good = |r: &FromCap| r.shape.uncross.after == 0 && r.shape.uncross.slivers_after <= r.slivers_at_rim && r.mean_min_angle_deg >= GOOD_MEAN_ANGLE_DEG;
     let mut best: Option<FromCap> = None;
     let keep = |r: FromCap, best: &mut Option<FromCap>| {
         if best.as_ref().map_or(true, |b| key(&r) < key(b)) {
@@ -199,5 +203,6 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
         (faces, planar, positions) = (state.faces, state.plane, state.position);
     }
     let mean_min_angle_deg = crate::metrics::angles::angle_quality_of(&positions, &faces).mean_min_angle_deg;
-    Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds, mean_min_angle_deg })
+    let slivers_at_rim = if shaped && closed { shape::uncross::slivers_on_fixed_edges(&positions, &faces, &has_plane, &fixed) } else { 0 };
+    Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds, mean_min_angle_deg, slivers_at_rim })
 }

@@ -20,7 +20,7 @@ use super::flips::bend_cos;
 use super::smooth::{relax_vertex, ring_valid_in_plane};
 use super::state::{edge_faces, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
 use crate::metrics::self_intersection::{face_pair_intersects, self_intersecting_faces};
-use crate::mesh::geometry::triangle_area;
+use crate::mesh::geometry::{norm, sub, triangle_area};
 use crate::mesh::TriMesh;
 
 /// Rounds of detection and moves.
@@ -227,6 +227,31 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: b
     false
 }
 
+/// Whether the planar face `f` is a sliver as [`uncross`] counts them (an angle below
+/// [`MIN_ANGLE`]).
+fn is_sliver(position: &[[f64; 3]], has_plane: &[bool], f: [u32; 3]) -> bool {
+    f.iter().all(|&u| has_plane[u as usize]) && {
+        let p = f.map(|u| position[u as usize]);
+        smallest_angle(p[0], p[1], p[2]) < MIN_ANGLE.to_radians()
+    }
+}
+
+/// The slivers ([`is_sliver`]) of `faces` whose shortest edge joins two vertices that stay
+/// (`fixed`): no move or flip of the shape stage changes that edge.
+pub(crate) fn slivers_on_fixed_edges(position: &[[f64; 3]], faces: &[[u32; 3]], has_plane: &[bool], fixed: &[bool]) -> usize {
+    faces
+        .iter()
+        .filter(|&&f| is_sliver(position, has_plane, f))
+        .filter(|f| {
+            let k = (0..3).min_by(|&i, &j| {
+                let l = |k: usize| norm(sub(position[f[k] as usize], position[f[(k + 1) % 3] as usize]));
+                l(i).total_cmp(&l(j))
+            });
+            k.is_some_and(|k| fixed[f[k] as usize] && fixed[f[(k + 1) % 3] as usize])
+        })
+        .count()
+}
+
 /// Flip and move around the slivers, then the crossing faces, of `mesh` until none is left or a
 /// round changes nothing (at most [`ROUNDS`] rounds each). `crease` is the shape stage's bound
 /// (radians, [`super::ShapeOptions::crease_deg`]). Deterministic: faces and vertices are
@@ -234,17 +259,7 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: b
 pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift, crease: f64) -> UncrossReport {
     let cos_crease = crease.cos();
     let crossing = |mesh: &Shaping| self_intersecting_faces(&TriMesh::new(mesh.position.clone(), mesh.faces.clone()));
-    let slivers = |mesh: &Shaping| -> Vec<u32> {
-        (0..mesh.faces.len() as u32)
-            .filter(|&t| {
-                let f = mesh.faces[t as usize];
-                f.iter().all(|&u| mesh.planar(u)) && {
-                    let p = f.map(|u| mesh.position[u as usize]);
-                    smallest_angle(p[0], p[1], p[2]) < MIN_ANGLE.to_radians()
-                }
-            })
-            .collect()
-    };
+    let slivers = |mesh: &Shaping| -> Vec<u32> { (0..mesh.faces.len() as u32).filter(|&t| is_sliver(&mesh.position, &mesh.has_plane, mesh.faces[t as usize])).collect() };
     let (before, slivers_before) = (crossing(mesh).len(), slivers(mesh).len());
     let mut report = UncrossReport { before, after: before, slivers_before, slivers_after: slivers_before, ..Default::default() };
     // Slivers first (a move or flip for an angle may not add a local crossing), then the
@@ -285,4 +300,23 @@ pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift, crease: f64) -> Un
     }
     (report.after, report.slivers_after) = (crossing(mesh).len(), slivers(mesh).len());
     report
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two slivers with the same short edge: counted when both of its ends stay, not when one
+    /// of them is free; a fat face and a face without a planar point are no slivers.
+    #[test]
+    fn slivers_on_edges_that_stay_are_counted() {
+        let position = vec![[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.05, 2.0, 0.0], [0.05, -2.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0]];
+        let faces = vec![[0, 1, 2], [1, 0, 3], [1, 5, 4]];
+        let has_plane = vec![true; 6];
+        assert_eq!(slivers_on_fixed_edges(&position, &faces, &has_plane, &[true, true, false, false, false, false]), 2);
+        assert_eq!(slivers_on_fixed_edges(&position, &faces, &has_plane, &[true, false, false, false, false, false]), 0);
+        let mut no_plane = has_plane.clone();
+        no_plane[2] = false;
+        assert_eq!(slivers_on_fixed_edges(&position, &faces, &no_plane, &[true, true, false, false, false, false]), 1);
+    }
 }
