@@ -153,7 +153,9 @@ impl Flipper {
         let ahead: Vec<bool> = {
             let this = &*self;
             let mesh = &*mesh;
-            keys.par_iter().map(|&(a, b)| this.pair(mesh, a, b).is_some_and(|(t1, t2, c, d)| this.better(mesh, criterion, [a, b, c, d], [t1, t2]))).collect()
+            keys.par_iter()
+                .map(|&(a, b)| this.pair(mesh, a, b).is_some_and(|(t1, t2, c, d)| this.fan_flip(mesh, [a, b, c, d]).is_some_and(|fan| this.better(mesh, criterion, [a, b, c, d], [t1, t2], fan))))
+                .collect()
         };
         let mut touched = vec![false; mesh.plane.len()];
         let mut flips = 0;
@@ -169,7 +171,7 @@ impl Flipper {
                 // A spoke's verdict also depends on the fan's other vertices, which other
                 // spoke flips of the pass change: it is judged afresh.
                 let judged_ahead = pass == 0 && fan_flip == FanFlip::No && [a, b, c, d].iter().all(|&v| !touched[v as usize]);
-                let better = if judged_ahead { ahead[i] } else { self.better(mesh, criterion, [a, b, c, d], [t1, t2]) };
+                let better = if judged_ahead { ahead[i] } else { self.better(mesh, criterion, [a, b, c, d], [t1, t2], fan_flip) };
                 if !better {
                     continue;
                 }
@@ -243,12 +245,12 @@ impl Flipper {
     /// Whether flipping the edge `(a, b)` of the pair `[t1, t2]` with opposite corners `c`,
     /// `d` improves what `criterion` asks for (the edge's existence and planarity checked
     /// by the caller).
-    fn better(&self, mesh: &Shaping, criterion: Criterion, [a, b, c, d]: [u32; 4], [t1, t2]: [u32; 2]) -> bool {
+    fn better(&self, mesh: &Shaping, criterion: Criterion, [a, b, c, d]: [u32; 4], [t1, t2]: [u32; 2], fan_flip: FanFlip) -> bool {
         let old = self.face_tan[t1 as usize].min(self.face_tan[t2 as usize]);
-        let fan = match self.fan_flip(mesh, [a, b, c, d]) {
-            Some(FanFlip::Remove(o)) => Fan::Remove(o, self.fans.get(&o).map_or(&[][..], |f| &f[..])),
-            Some(FanFlip::Insert(_)) => Fan::Insert,
-            _ => Fan::No,
+        let fan = match fan_flip {
+            FanFlip::Remove(o) => Fan::Remove(o, self.fans.get(&o).map_or(&[][..], |f| &f[..])),
+            FanFlip::Insert(_) => Fan::Insert,
+            FanFlip::No => Fan::No,
         };
         match criterion {
             Criterion::MinAngle => improves(mesh, [a, b, c, d], old, self.cos_crease, None, fan),
@@ -320,25 +322,30 @@ fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], old_tan: f64, cos_crease: f6
     if !enough {
         return false;
     }
-    if let Fan::Remove(o, ring) = fan {
-        // The new planar face: (d, b, c) when the centre is a, (c, a, d) when it is b.
-        let [x, y, z] = if o == a { [d, b, c] } else { [c, a, d] };
-        let (px, py, pz) = (p(x), p(y), p(z));
-        let scale = norm([py[0] - px[0], py[1] - px[1], 0.0]) * norm([pz[0] - px[0], pz[1] - px[1], 0.0]);
-        if !mesh.oriented(px, py, pz, MIN_PLANAR_SHARE * scale) {
-            return false;
+    match fan {
+        Fan::No => {
+            let pair = (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(a), p(b), p(c))).abs()
+                + (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(b), p(a), p(d))).abs();
+            let floor = MIN_PLANAR_SHARE * pair;
+            if !(mesh.oriented(p(c), p(a), p(d), floor) && mesh.oriented(p(d), p(b), p(c), floor)) {
+                return false;
+            }
         }
-        let inside = |q: [f64; 2]| mesh.oriented(px, py, q, 0.0) && mesh.oriented(py, pz, q, 0.0) && mesh.oriented(pz, px, q, 0.0);
-        if ring.iter().any(|&v| v != x && v != y && v != z && inside(p(v))) {
-            return false;
+        Fan::Remove(o, ring) => {
+            // The new planar face: (d, b, c) when the centre is a, (c, a, d) when it is b.
+            let [x, y, z] = if o == a { [d, b, c] } else { [c, a, d] };
+            let (px, py, pz) = (p(x), p(y), p(z));
+            let scale = (py[0] - px[0]).hypot(py[1] - px[1]) * (pz[0] - px[0]).hypot(pz[1] - px[1]);
+            if !mesh.oriented(px, py, pz, MIN_PLANAR_SHARE * scale) {
+                return false;
+            }
+            let inside = |q: [f64; 2]| mesh.oriented(px, py, q, 0.0) && mesh.oriented(py, pz, q, 0.0) && mesh.oriented(pz, px, q, 0.0);
+            if ring.iter().any(|&v| v != x && v != y && v != z && inside(p(v))) {
+                return false;
+            }
         }
-    } else if let Fan::No = fan {
-        let pair = (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(a), p(b), p(c))).abs()
-            + (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(b), p(a), p(d))).abs();
-        let floor = MIN_PLANAR_SHARE * pair;
-        if !(mesh.oriented(p(c), p(a), p(d), floor) && mesh.oriented(p(d), p(b), p(c), floor)) {
-            return false;
-        }
+        // Both new faces hold the centre: nothing is planar.
+        Fan::Insert => {}
     }
     // Neither pair may bend by more than the crease bound; or the new pair bends less than
     // the old one when
