@@ -146,6 +146,16 @@ fn closed_bird_skull() {
     check_with("closed_bird_skull_CPallidusA_choi.obj.gz", 0.09);
 }
 
+/// A decimated copy of the lung lobe (graded triangles): its bottom fan's crowded ring left a
+/// vertex of valence 4 pressed against a spoke (a 7.4-degree face) until the removal of
+/// low-valence vertices at slivers (`remesh::shape::sliver`).
+#[test]
+fn closed_lung_lobe_decimated() {
+    let rep = check("closed_lung_rml_chaste_decimated.obj.gz");
+    assert!(rep.shape.sliver_removals > 0, "{:?}", rep.shape);
+    assert!(rep.quality.min_angle_deg >= 15.0, "smallest angle {:.1}", rep.quality.min_angle_deg);
+}
+
 #[test]
 fn closed_hippocampus() {
     check("closed_hippocampus_choi.obj.gz");

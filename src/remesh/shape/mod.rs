@@ -24,6 +24,7 @@ pub(crate) mod boundary;
 pub(crate) mod flips;
 pub(crate) mod polish;
 pub(crate) mod resample;
+pub(crate) mod sliver;
 pub(crate) mod smooth;
 pub(crate) mod state;
 pub(crate) mod uncross;
@@ -134,6 +135,8 @@ pub struct ShapeReport {
     pub splits: usize,
     /// Edge collapses over all iterations.
     pub collapses: usize,
+    /// Vertices of valence 3 or 4 removed at slivers after the last flips (`sliver`).
+    pub sliver_removals: usize,
     /// Vertex moves (interior relaxation and boundary slides) over all iterations.
     pub moves: usize,
     /// Boundary vertices put on the input's corners.
@@ -311,6 +314,10 @@ pub(crate) fn optimize_shape(
     }
     if lloyd + options.polish_iterations > 0 {
         report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
+        report.sliver_removals = sliver::remove_sliver_vertices(&mut mesh);
+        if report.sliver_removals > 0 {
+            report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
+        }
     }
     resample::compact(&mut mesh, &mut arc);
     let face_target = face_densities(&mesh.faces, &vertex_densities(&mesh, input.lift, input.density)).iter().map(|r| 1.0 / r).collect();
