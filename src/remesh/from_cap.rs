@@ -200,6 +200,12 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
         let orientation = shape::state::planar_orientation(&faces, &planar, &has_plane, &role);
         let mut state = shape::state::Shaping { faces, plane: planar, position: positions, hint: vec![u32::MAX; has_plane.len()], role, has_plane: has_plane.clone(), orientation };
         uncross_report = shape::uncross::uncross(&mut state, &lift, options.shape.crease_deg.to_radians());
+        if uncross_report.collapses > 0 {
+            // Collapsed vertices have no face left: drop them, renumbering the rest.
+            shape::resample::compact(&mut state, &mut vec![0.0; has_plane.len()]);
+            fixed = state.role.iter().map(|&r| r != shape::state::Role::Free).collect();
+            has_plane = state.has_plane.clone();
+        }
         (faces, planar, positions) = (state.faces, state.plane, state.position);
     }
     let mean_min_angle_deg = crate::metrics::angles::angle_quality_of(&positions, &faces).mean_min_angle_deg;

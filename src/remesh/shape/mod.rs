@@ -135,7 +135,8 @@ pub struct ShapeReport {
     pub splits: usize,
     /// Edge collapses over all iterations.
     pub collapses: usize,
-    /// Vertices of valence 3 or 4 removed at slivers after the last flips (`sliver`).
+    /// Vertices removed at slivers after the last flips (`sliver`): free ones of valence 3 or
+    /// 4, and a closed surface's rim vertices merged along short rim edges.
     pub sliver_removals: usize,
     /// Vertex moves (interior relaxation and boundary slides) over all iterations.
     pub moves: usize,
@@ -315,6 +316,10 @@ pub(crate) fn optimize_shape(
     if lloyd + options.polish_iterations > 0 {
         report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
         report.sliver_removals = sliver::remove_sliver_vertices(&mut mesh);
+        // A closed surface's bottom (no planar point) is below its rim ring.
+        if mesh.has_plane.iter().any(|&p| !p) {
+            report.sliver_removals += sliver::collapse_rim_slivers(&mut mesh);
+        }
         if report.sliver_removals > 0 {
             report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
         }

@@ -1,4 +1,5 @@
-//! Removal of low-valence vertices at slivers, after the last flips (ours; see [`super`]).
+//! Removal of low-valence vertices and short rim edges at slivers, after the last flips
+//! (ours; see [`super`]).
 //!
 //! A free vertex with three or four neighbours that sits at a sliver cannot be mended by
 //! flips: flipping one of its edges folds the pair (three neighbours) or only moves the
@@ -7,7 +8,9 @@
 //! triangulated (one face, or the better of a quadrilateral's two diagonals) when the new
 //! faces' smallest angle is larger than the old faces', each new face keeps its planar
 //! orientation (a face with the fan's centre is judged on the surface, as the flips judge
-//! it) and turns by no more than the collapses allow ([`super::resample`]).
+//! it) and turns by no more than the collapses allow ([`super::resample`]). A closed surface's
+//! rim ring, bunched on the punctured quad, loses short edges at needles the same way
+//! ([`collapse_rim_slivers`]).
 
 use super::state::{smallest_angle, Incidence, Role, Shaping};
 use crate::mesh::geometry::{cross, dot, norm, sub};
@@ -82,6 +85,124 @@ pub(crate) fn remove_sliver_vertices(mesh: &mut Shaping) -> usize {
     }
     removed
 }
+
+/// On a closed surface, collapse the short rim edges of the faces below [`SLIVER_DEG`]: the
+/// rim ring (vertices that stay, with planar points) is bunched on the punctured quad when the
+/// quad is larger than a remesh face, and its short edges make needles with the ring above,
+/// which nothing else may move. One end is merged into the other (both lie on the quad's
+/// boundary, so the rim stays on the surface) where the smallest angle of the faces around it
+/// grows, the edge's link is two vertices, every changed face with planar corners keeps the
+/// plane's orientation and none turns by more than 45 degrees. Removed vertices keep their slots
+/// with no face. Returns the number of collapses.
+pub(crate) fn collapse_rim_slivers(mesh: &mut Shaping) -> usize {
+    let threshold = SLIVER_DEG.to_radians();
+    let rim = |mesh: &Shaping, v: u32| mesh.role[v as usize] == Role::Fixed && mesh.planar(v);
+    let mut collapsed = 0;
+    for _ in 0..MAX_PASSES {
+        let incidence = mesh.incidence();
+        let x = |mesh: &Shaping, v: u32| mesh.position[v as usize];
+        let mut edges: Vec<(u32, u32)> = mesh
+            .faces
+            .iter()
+            .filter(|f| f[0] != f[1] && smallest_angle(x(mesh, f[0]), x(mesh, f[1]), x(mesh, f[2])) < threshold)
+            .filter_map(|f| {
+                let k = (0..3).min_by(|&i, &j| {
+                    let l = |k: usize| norm(sub(x(mesh, f[k]), x(mesh, f[(k + 1) % 3])));
+                    l(i).total_cmp(&l(j))
+                })?;
+                let (a, b) = (f[k], f[(k + 1) % 3]);
+                (rim(mesh, a) && rim(mesh, b)).then_some((a.min(b), a.max(b)))
+            })
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        let mut dead = vec![false; mesh.faces.len()];
+        let mut touched = vec![false; mesh.plane.len()];
+        let mut this_pass = 0;
+        for (a, b) in edges {
+            let around: Vec<u32> = incidence.of(a as usize).iter().chain(incidence.of(b as usize)).copied().collect();
+            if around.iter().any(|&t| dead[t as usize] || mesh.faces[t as usize].iter().any(|&v| touched[v as usize])) {
+                continue;
+            }
+            let best = [(b, a), (a, b)]
+                .into_iter()
+                .filter_map(|(gone, kept)| collapse_gain(mesh, &incidence, gone, kept).map(|g| (g, gone, kept)))
+                .max_by(|p, q| p.0.total_cmp(&q.0));
+            let Some((_, gone, kept)) = best else { continue };
+            for &t in incidence.of(gone as usize) {
+                let f = &mut mesh.faces[t as usize];
+                if f.contains(&kept) {
+                    dead[t as usize] = true;
+                } else {
+                    *f = f.map(|v| if v == gone { kept } else { v });
+                }
+            }
+            for &t in &around {
+                for &v in &mesh.faces[t as usize] {
+                    touched[v as usize] = true;
+                }
+            }
+            touched[gone as usize] = true;
+            this_pass += 1;
+        }
+        if this_pass == 0 {
+            break;
+        }
+        let mut k = 0;
+        mesh.faces.retain(|_| {
+            k += 1;
+            !dead[k - 1]
+        });
+        collapsed += this_pass;
+    }
+    collapsed
+}
+
+/// The gain of the smallest angle around `gone` when it is merged into its neighbour `kept`
+/// (`None` when the merge is not allowed or does not raise it by [`MIN_GAIN`] to at least
+/// [`RIM_MIN_DEG`]).
+fn collapse_gain(mesh: &Shaping, incidence: &Incidence, gone: u32, kept: u32) -> Option<f64> {
+    let x = |v: u32| mesh.position[v as usize];
+    let neighbours = |v: u32| -> Vec<u32> {
+        let mut out: Vec<u32> = incidence.of(v as usize).iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| u != v).collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    };
+    let (ng, nk) = (neighbours(gone), neighbours(kept));
+    if ng.iter().filter(|v| nk.binary_search(v).is_ok()).count() != 2 {
+        return None;
+    }
+    let faces = incidence.of(gone as usize);
+    let old = faces.iter().map(|&t| mesh.faces[t as usize]).map(|f| smallest_angle(x(f[0]), x(f[1]), x(f[2]))).fold(f64::INFINITY, f64::min);
+    let mut new = f64::INFINITY;
+    for &t in faces {
+        let f = mesh.faces[t as usize];
+        if f.contains(&kept) {
+            continue;
+        }
+        let g = f.map(|v| if v == gone { kept } else { v });
+        let (y0, y1) = (f.map(x), g.map(x));
+        let n0 = cross(sub(y0[1], y0[0]), sub(y0[2], y0[0]));
+        let n1 = cross(sub(y1[1], y1[0]), sub(y1[2], y1[0]));
+        if !(norm(n1) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1)) {
+            return None;
+        }
+        if g.iter().all(|&v| mesh.planar(v)) {
+            let p = g.map(|v| mesh.plane[v as usize]);
+            if !mesh.oriented(p[0], p[1], p[2], 0.0) {
+                return None;
+            }
+        }
+        new = new.min(smallest_angle(y1[0], y1[1], y1[2]));
+    }
+    (new.is_finite() && new > old + MIN_GAIN && new >= RIM_MIN_DEG.to_radians()).then_some(new - old)
+}
+
+/// Smallest angle (degrees) a rim collapse must leave around it: a collapse that leaves a
+/// smaller one (often a face of the bottom, which nothing later mends) may block the sliver
+/// removal of [`super::uncross`], which moves the free vertex at the needle instead.
+const RIM_MIN_DEG: f64 = 15.0;
 
 /// The neighbours of interior vertex `u` in the faces' order around it (`None` when its
 /// faces do not close one cycle around it).
@@ -187,6 +308,22 @@ mod tests {
             let p = f.map(|v| mesh.plane[v as usize]);
             assert!(mesh.oriented(p[0], p[1], p[2], 0.0));
         }
+    }
+
+    /// Two rim vertices (that stay, with planar points) 0.05 apart under a free apex, over a
+    /// bottom vertex without a planar point: the needle at the apex goes with the short edge.
+    #[test]
+    fn a_short_rim_edge_under_a_needle_is_collapsed() {
+        let plane = vec![[0.0, 0.0], [0.05, 0.0], [1.0, 0.0], [0.5, 1.0], [0.0, 0.0]];
+        let position = vec![[0.0, 0.0, 0.0], [0.05, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 1.0, 0.0], [0.5, -0.5, 0.0]];
+        let faces = vec![[0, 1, 3], [1, 2, 3], [1, 0, 4], [2, 1, 4]];
+        let role = vec![Role::Fixed, Role::Fixed, Role::Fixed, Role::Free, Role::Fixed];
+        let has_plane = vec![true, true, true, true, false];
+        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 5], role, has_plane, orientation: 1.0 };
+        assert_eq!(collapse_rim_slivers(&mut mesh), 1);
+        assert_eq!(mesh.faces, vec![[0, 2, 3], [2, 0, 4]]);
+        let after = mesh.faces.iter().map(|f| smallest_angle(mesh.position[f[0] as usize], mesh.position[f[1] as usize], mesh.position[f[2] as usize])).fold(f64::INFINITY, f64::min);
+        assert!((after.to_degrees() - 45.0).abs() < 1e-9, "{}", after.to_degrees());
     }
 
     /// A well-shaped valence-4 vertex (the square's centre) stays.

@@ -50,6 +50,8 @@ pub struct UncrossReport {
     pub moves: usize,
     /// Edge flips made.
     pub flips: usize,
+    /// Edge collapses made where flips and moves left crossing faces.
+    pub collapses: usize,
     /// Faces with an angle below 15 degrees before the pass.
     pub slivers_before: usize,
     /// Faces with an angle below 15 degrees after it.
@@ -227,6 +229,117 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: b
     false
 }
 
+/// Where flips and moves leave crossing faces (a crumpled spot of a few faces across a thin
+/// part), collapse an edge of a crossing face: a free vertex with a planar point merged into a
+/// neighbour with one (which stays where it is), when the edge's link is two vertices, every
+/// changed face keeps its planar orientation and an area, no angle falls below the faces'
+/// smallest or [`MIN_ANGLE`], and the crossings among the faces around both ends fall. At most
+/// one collapse per neighbourhood; the two faces of each collapsed edge are removed (the
+/// vertex keeps its slot with no face). Returns the number of collapses.
+fn uncross_by_collapse(mesh: &mut Shaping, flagged: &[u32]) -> usize {
+    let incidence = mesh.incidence();
+    let mut dead = vec![false; mesh.faces.len()];
+    let mut touched = vec![false; mesh.plane.len()];
+    let mut collapses = 0;
+    for &t in flagged {
+        if dead[t as usize] {
+            continue;
+        }
+        let f = mesh.faces[t as usize];
+        'edges: for k in 0..3 {
+            for (gone, kept) in [(f[k], f[(k + 1) % 3]), (f[(k + 1) % 3], f[k])] {
+                if mesh.role[gone as usize] != Role::Free || !mesh.planar(gone) || !mesh.planar(kept) {
+                    continue;
+                }
+                let around: Vec<u32> = incidence.of(gone as usize).iter().chain(incidence.of(kept as usize)).copied().collect();
+                if around.iter().any(|&u| dead[u as usize] || mesh.faces[u as usize].iter().any(|&w| touched[w as usize])) {
+                    continue;
+                }
+                if let Some(removed) = try_collapse(mesh, &incidence, &dead, gone, kept) {
+                    for r in removed {
+                        dead[r as usize] = true;
+                    }
+                    for &u in &around {
+                        for &w in &mesh.faces[u as usize] {
+                            touched[w as usize] = true;
+                        }
+                    }
+                    touched[gone as usize] = true;
+                    collapses += 1;
+                    break 'edges;
+                }
+            }
+        }
+    }
+    if collapses > 0 {
+        let mut i = 0;
+        mesh.faces.retain(|_| {
+            i += 1;
+            !dead[i - 1]
+        });
+    }
+    collapses
+}
+
+/// Merge `gone` into `kept` if that passes the tests of [`uncross_by_collapse`]: the faces
+/// are changed in place and the two faces of the edge returned (to be removed); `None` (and
+/// nothing changed) otherwise.
+fn try_collapse(mesh: &mut Shaping, incidence: &Incidence, dead: &[bool], gone: u32, kept: u32) -> Option<[u32; 2]> {
+    let neighbours = |v: u32| -> Vec<u32> {
+        let mut out: Vec<u32> = incidence.of(v as usize).iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| u != v).collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    };
+    let (ng, nk) = (neighbours(gone), neighbours(kept));
+    if ng.iter().filter(|v| nk.binary_search(v).is_ok()).count() != 2 {
+        return None;
+    }
+    let ring_gone = incidence.of(gone as usize);
+    let removed: Vec<u32> = ring_gone.iter().copied().filter(|&t| mesh.faces[t as usize].contains(&kept)).collect();
+    let [r1, r2] = removed[..] else { return None };
+    let x = |v: u32| mesh.position[v as usize];
+    let angle = |f: [u32; 3]| if triangle_area(x(f[0]), x(f[1]), x(f[2])) > 0.0 { smallest_angle(x(f[0]), x(f[1]), x(f[2])) } else { 0.0 };
+    let old_angle = ring_gone.iter().map(|&t| angle(mesh.faces[t as usize])).fold(f64::INFINITY, f64::min);
+    let changed: Vec<(u32, [u32; 3])> = ring_gone
+        .iter()
+        .filter(|&&t| t != r1 && t != r2)
+        .map(|&t| (t, mesh.faces[t as usize].map(|v| if v == gone { kept } else { v })))
+        .collect();
+    for &(_, g) in &changed {
+        let p = g.map(|v| mesh.plane[v as usize]);
+        if g.iter().all(|&v| mesh.planar(v)) && !mesh.oriented(p[0], p[1], p[2], 0.0) {
+            return None;
+        }
+        if !(angle(g) >= old_angle.min(MIN_ANGLE.to_radians())) {
+            return None;
+        }
+    }
+    let mut near = faces_around(mesh, incidence, gone as usize);
+    near.extend(faces_around(mesh, incidence, kept as usize));
+    near.retain(|&t| !dead[t as usize]);
+    near.sort_unstable();
+    near.dedup();
+    let mut ring: Vec<u32> = incidence.of(gone as usize).iter().chain(incidence.of(kept as usize)).copied().collect();
+    ring.sort_unstable();
+    ring.dedup();
+    let before = local_crossings(mesh, &ring, &near, usize::MAX, [0.0; 3]);
+    let old: Vec<(u32, [u32; 3])> = changed.iter().map(|&(t, _)| (t, mesh.faces[t as usize])).collect();
+    for &(t, g) in &changed {
+        mesh.faces[t as usize] = g;
+    }
+    ring.retain(|&t| t != r1 && t != r2);
+    near.retain(|&t| t != r1 && t != r2);
+    let after = local_crossings(mesh, &ring, &near, usize::MAX, [0.0; 3]);
+    if after < before {
+        return Some([r1, r2]);
+    }
+    for (t, f) in old {
+        mesh.faces[t as usize] = f;
+    }
+    None
+}
+
 /// Whether the planar face `f` is a sliver as [`uncross`] counts them (an angle below
 /// [`MIN_ANGLE`]).
 fn is_sliver(position: &[[f64; 3]], has_plane: &[bool], f: [u32; 3]) -> bool {
@@ -294,7 +407,14 @@ pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift, crease: f64) -> Un
             report.moves += moved;
             flagged = flag(mesh);
             if moved + flips == 0 {
-                break;
+                // Crossings that no flip or move undoes: an edge collapse at each, then the
+                // flips and moves again.
+                let collapsed = if sliver_phase || flagged.is_empty() { 0 } else { uncross_by_collapse(mesh, &flagged) };
+                report.collapses += collapsed;
+                if collapsed == 0 {
+                    break;
+                }
+                flagged = flag(mesh);
             }
         }
     }
