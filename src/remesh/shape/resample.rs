@@ -16,7 +16,7 @@
 //! the chord): there (the hand's finger webs, the bunny's ears) they left slivers.
 
 use super::boundary::Track;
-use super::state::{edge_faces, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
+use super::state::{drop_faces, edge_faces, neighbours, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
 use crate::mesh::geometry::{cross, dot, norm, signed_area_2d, sub};
 
 /// Edges longer than this many target lengths are split.
@@ -189,12 +189,6 @@ pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, li
     let mut touched = vec![false; n];
     let mut removed_face = vec![false; mesh.faces.len()];
     let mut collapses = 0;
-    let neighbours = |mesh: &Shaping, v: u32| -> Vec<u32> {
-        let mut out: Vec<u32> = incidence.of(v as usize).iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| u != v).collect();
-        out.sort_unstable();
-        out.dedup();
-        out
-    };
     for (_, (a, b), [t1, t2]) in short {
         if touched[a as usize] || touched[b as usize] || !mesh.planar(a) || !mesh.planar(b) {
             continue;
@@ -206,7 +200,7 @@ pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, li
             (_, Role::Free) => (b, a),
             _ => continue,
         };
-        let (nu, nv) = (neighbours(mesh, u), neighbours(mesh, v));
+        let (nu, nv) = (neighbours(mesh, incidence, u), neighbours(mesh, incidence, v));
         let common = nu.iter().filter(|x| nv.binary_search(x).is_ok()).count();
         if common != 2 {
             continue;
@@ -268,11 +262,7 @@ pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, li
         collapses += 1;
     }
     if collapses > 0 {
-        let mut k = 0;
-        mesh.faces.retain(|_| {
-            k += 1;
-            !removed_face[k - 1]
-        });
+        drop_faces(&mut mesh.faces, &removed_face);
     }
     collapses
 }

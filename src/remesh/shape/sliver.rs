@@ -12,7 +12,7 @@
 //! rim ring, bunched on the punctured quad, loses short edges at needles the same way
 //! ([`collapse_rim_slivers`]).
 
-use super::state::{smallest_angle, Incidence, Role, Shaping};
+use super::state::{drop_faces, link_is_two, smallest_angle, Incidence, Role, Shaping};
 use crate::mesh::geometry::{cross, dot, norm, sub};
 
 /// Faces whose smallest angle (degrees) is below this have their low-valence vertices
@@ -76,11 +76,7 @@ pub(crate) fn remove_sliver_vertices(mesh: &mut Shaping) -> usize {
         if this_pass == 0 {
             break;
         }
-        let mut k = 0;
-        mesh.faces.retain(|_| {
-            k += 1;
-            !dead[k - 1]
-        });
+        drop_faces(&mut mesh.faces, &dead);
         removed += this_pass;
     }
     removed
@@ -148,11 +144,7 @@ pub(crate) fn collapse_rim_slivers(mesh: &mut Shaping) -> usize {
         if this_pass == 0 {
             break;
         }
-        let mut k = 0;
-        mesh.faces.retain(|_| {
-            k += 1;
-            !dead[k - 1]
-        });
+        drop_faces(&mut mesh.faces, &dead);
         collapsed += this_pass;
     }
     collapsed
@@ -163,14 +155,7 @@ pub(crate) fn collapse_rim_slivers(mesh: &mut Shaping) -> usize {
 /// [`RIM_MIN_DEG`]).
 fn collapse_gain(mesh: &Shaping, incidence: &Incidence, gone: u32, kept: u32) -> Option<f64> {
     let x = |v: u32| mesh.position[v as usize];
-    let neighbours = |v: u32| -> Vec<u32> {
-        let mut out: Vec<u32> = incidence.of(v as usize).iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| u != v).collect();
-        out.sort_unstable();
-        out.dedup();
-        out
-    };
-    let (ng, nk) = (neighbours(gone), neighbours(kept));
-    if ng.iter().filter(|v| nk.binary_search(v).is_ok()).count() != 2 {
+    if !link_is_two(mesh, incidence, gone, kept) {
         return None;
     }
     let faces = incidence.of(gone as usize);

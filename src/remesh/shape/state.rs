@@ -145,6 +145,30 @@ pub(crate) fn edge_faces(faces: &[[u32; 3]]) -> FastMap<(u32, u32), [u32; 2]> {
     edges
 }
 
+/// The neighbours of vertex `v` of `mesh` (sorted, each once).
+pub(crate) fn neighbours(mesh: &Shaping, incidence: &Incidence, v: u32) -> Vec<u32> {
+    let mut out: Vec<u32> = incidence.of(v as usize).iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| u != v).collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// Whether collapsing edge `(a, b)` keeps the mesh manifold: the two ends share exactly two
+/// neighbours (the edge's link condition).
+pub(crate) fn link_is_two(mesh: &Shaping, incidence: &Incidence, a: u32, b: u32) -> bool {
+    let (na, nb) = (neighbours(mesh, incidence, a), neighbours(mesh, incidence, b));
+    na.iter().filter(|v| nb.binary_search(v).is_ok()).count() == 2
+}
+
+/// Remove the faces marked `dead` (same length as `faces`), keeping the others' order.
+pub(crate) fn drop_faces(faces: &mut Vec<[u32; 3]>, dead: &[bool]) {
+    let mut k = 0;
+    faces.retain(|_| {
+        k += 1;
+        !dead[k - 1]
+    });
+}
+
 /// The corner of `face` after the directed edge `a -> b` (`None` if the face does not run
 /// `a -> b`).
 pub(crate) fn third(face: [u32; 3], a: u32, b: u32) -> Option<u32> {

@@ -18,7 +18,7 @@
 
 use super::flips::bend_cos;
 use super::smooth::{relax_vertex, ring_valid_in_plane};
-use super::state::{edge_faces, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
+use super::state::{drop_faces, edge_faces, link_is_two, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
 use crate::metrics::self_intersection::{face_pair_intersects, self_intersecting_faces};
 use crate::mesh::geometry::{norm, sub, triangle_area};
 use crate::mesh::TriMesh;
@@ -272,11 +272,7 @@ fn uncross_by_collapse(mesh: &mut Shaping, flagged: &[u32]) -> usize {
         }
     }
     if collapses > 0 {
-        let mut i = 0;
-        mesh.faces.retain(|_| {
-            i += 1;
-            !dead[i - 1]
-        });
+        drop_faces(&mut mesh.faces, &dead);
     }
     collapses
 }
@@ -285,14 +281,7 @@ fn uncross_by_collapse(mesh: &mut Shaping, flagged: &[u32]) -> usize {
 /// are changed in place and the two faces of the edge returned (to be removed); `None` (and
 /// nothing changed) otherwise.
 fn try_collapse(mesh: &mut Shaping, incidence: &Incidence, dead: &[bool], gone: u32, kept: u32) -> Option<[u32; 2]> {
-    let neighbours = |v: u32| -> Vec<u32> {
-        let mut out: Vec<u32> = incidence.of(v as usize).iter().flat_map(|&t| mesh.faces[t as usize]).filter(|&u| u != v).collect();
-        out.sort_unstable();
-        out.dedup();
-        out
-    };
-    let (ng, nk) = (neighbours(gone), neighbours(kept));
-    if ng.iter().filter(|v| nk.binary_search(v).is_ok()).count() != 2 {
+    if !link_is_two(mesh, incidence, gone, kept) {
         return None;
     }
     let ring_gone = incidence.of(gone as usize);
