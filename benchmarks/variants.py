@@ -41,7 +41,7 @@ MESHES = [
 
 
 def variants(name, work):
-    """Write the `iso` and `dec` copies of mesh `name` into `work`; returns {variant: path}."""
+    """Write the `iso` and `dec` copies of mesh `name` into `work`; returns {variant: (path, faces)}."""
     src = os.path.join(work, name + ".obj")
     with gzip.open(os.path.join(DATA, name + ".obj.gz")) as f, open(src, "wb") as g:
         shutil.copyfileobj(f, g)
@@ -49,14 +49,14 @@ def variants(name, work):
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(src)
     ms.meshing_isotropic_explicit_remeshing(iterations=5, targetlen=pymeshlab.PercentageValue(0.8))
-    out["iso"] = os.path.join(work, name + "_iso.obj")
-    ms.save_current_mesh(out["iso"])
+    out["iso"] = (os.path.join(work, name + "_iso.obj"), ms.current_mesh().face_number())
+    ms.save_current_mesh(out["iso"][0])
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(src)
     faces = ms.current_mesh().face_number()
     ms.meshing_decimation_quadric_edge_collapse(targetfacenum=max(2000, faces // 3), preservetopology=True, preserveboundary=True)
-    out["dec"] = os.path.join(work, name + "_dec.obj")
-    ms.save_current_mesh(out["dec"])
+    out["dec"] = (os.path.join(work, name + "_dec.obj"), ms.current_mesh().face_number())
+    ms.save_current_mesh(out["dec"][0])
     return out
 
 
@@ -85,7 +85,7 @@ def main():
     rows = []
     with tempfile.TemporaryDirectory() as work:
         for name in args.meshes.split(","):
-            for (variant, path), faces in [(vp, f) for vp in variants(name, work).items() for f in args.faces.split(",")]:
+            for (variant, (path, input_faces)), faces in [(vp, f) for vp in variants(name, work).items() for f in args.faces.split(",")]:
                 out = os.path.join(work, f"{name}_{variant}_{faces}_remesh.obj")
                 report = out + ".json"
                 t = time.perf_counter()
@@ -97,7 +97,7 @@ def main():
                     continue
                 r = json.load(open(report))
                 row = {
-                    "mesh": name, "variant": variant, "target": int(faces), "input_faces": pymeshlab_faces(path), "faces": r["faces"],
+                    "mesh": name, "variant": variant, "target": int(faces), "input_faces": input_faces, "faces": r["faces"],
                     "d_face_relative": r["d_face_relative"], "mean_min_angle_deg": r["mean_min_angle_deg"],
                     "share_faces_angle_below_30": r["share_faces_angle_below_30"], "min_angle_deg": r["min_angle_deg"],
                     "self_intersecting_faces": r["self_intersecting_faces"], "self_intersecting_faces_input": r["self_intersecting_faces_input"],
@@ -108,12 +108,6 @@ def main():
                 rows.append(row)
                 print(f"{name} {variant} {faces}: {row['faces']} faces, mean {row['mean_min_angle_deg']:.2f}, min {row['min_angle_deg']:.1f} {' '.join(row['misses'])}", file=sys.stderr)
     write(rows, args)
-
-
-def pymeshlab_faces(path):
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(path)
-    return ms.current_mesh().face_number()
 
 
 def write(rows, args):

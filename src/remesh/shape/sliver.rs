@@ -167,19 +167,11 @@ fn collapse_gain(mesh: &Shaping, incidence: &Incidence, gone: u32, kept: u32) ->
             continue;
         }
         let g = f.map(|v| if v == gone { kept } else { v });
-        let (y0, y1) = (f.map(x), g.map(x));
-        let n0 = cross(sub(y0[1], y0[0]), sub(y0[2], y0[0]));
-        let n1 = cross(sub(y1[1], y1[0]), sub(y1[2], y1[0]));
-        if !(norm(n1) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1)) {
+        let y0 = f.map(x);
+        if !valid(mesh, g, cross(sub(y0[1], y0[0]), sub(y0[2], y0[0]))) {
             return None;
         }
-        if g.iter().all(|&v| mesh.planar(v)) {
-            let p = g.map(|v| mesh.plane[v as usize]);
-            if !mesh.oriented(p[0], p[1], p[2], 0.0) {
-                return None;
-            }
-        }
-        new = new.min(smallest_angle(y1[0], y1[1], y1[2]));
+        new = new.min(smallest_angle(x(g[0]), x(g[1]), x(g[2])));
     }
     (new.is_finite() && new > old + MIN_GAIN && new >= RIM_MIN_DEG.to_radians()).then_some(new - old)
 }
@@ -254,7 +246,8 @@ fn adjacent(mesh: &Shaping, incidence: &Incidence, a: u32, b: u32) -> bool {
 }
 
 /// Whether new face `f` keeps the planar orientation (when all its corners have planar
-/// points) and turns by at most 45 degrees from `normal`, the removed faces' summed normal.
+/// points) and turns by at most 45 degrees from `normal` (the removed faces' summed normal, or
+/// the normal of the face it replaces).
 fn valid(mesh: &Shaping, f: [u32; 3], normal: [f64; 3]) -> bool {
     let y = f.map(|v| mesh.position[v as usize]);
     let n = cross(sub(y[1], y[0]), sub(y[2], y[0]));
