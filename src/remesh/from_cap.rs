@@ -9,6 +9,8 @@ use crate::cap::{stereographic, CapMap, InverseMap};
 use crate::error::Error;
 use crate::mesh::geometry::triangle_area;
 use crate::mesh::TriMesh;
+use crate::metrics::self_intersection::self_intersecting_faces;
+use crate::metrics::closest::SurfaceDistance;
 use crate::progress::{self, Progress, Stage};
 use crate::refine::area_refine::AreaRefineReport;
 use rayon::prelude::*;
@@ -61,24 +63,32 @@ pub(crate) struct FromCap {
 }
 
 /// The mean smallest angle (degrees) a remesh from a start must reach, with no crossing face
-/// and no sliver left, for the other starts not to be tried: the bar of issue 26.
+/// of its own (none away from the input's crossings) and no sliver left, for the other starts
+/// not to be tried: the bar of issue 26.
 const GOOD_MEAN_ANGLE_DEG: f64 = 48.0;
 
 /// The shape stage's remesh from the best start (docs/method.md section 18, "Isotropic
 /// start"): `cap`'s lift when it is near-isotropic; else isotropic samples of the surface
 /// (`place` lifts cap points, `surface_area` is the input's), then `cap` itself, until a remesh
-/// has no crossing face, no sliver and a mean smallest angle of [`GOOD_MEAN_ANGLE_DEG`]; of
-/// those made, the one with the fewest crossing faces, then slivers, then the highest mean
-/// smallest angle is kept.
+/// has no crossing face of its own, no sliver and a mean smallest angle of
+/// [`GOOD_MEAN_ANGLE_DEG`]; of those made, the one with the fewest crossing faces of its own,
+/// then slivers, then the highest mean smallest angle is kept. Crossing faces within two edge
+/// lengths of the input's own crossings are the input's ([`InputCrossings`]): a face scan that
+/// crosses itself made every start miss the bar, and three starts cost three shape stages.
 pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>, surface_area: f64, progress: &dyn Progress) -> Result<FromCap, Error> {
-    let key = |r: &FromCap| (r.shape.uncross.after, r.shape.uncross.slivers_after, -r.mean_min_angle_deg);
-    let good = |r: &FromCap| r.shape.uncross.after == 0 && r.shape.uncross.slivers_after <= r.slivers_at_rim && r.mean_min_angle_deg >= GOOD_MEAN_ANGLE_DEG;
+    // Crossing faces of a start's remesh that lie at crossings of the input are inherited
+    // from it (any remesh on the surface has them): only the others count against a start.
+    let input_crossings = InputCrossings::new(ctx.mesh);
+    let own = |r: &FromCap| r.shape.uncross.after - r.shape.uncross.at_input_crossings;
+    let key = |r: &FromCap| (own(r), r.shape.uncross.slivers_after, -r.mean_min_angle_deg);
+    let good = |r: &FromCap| own(r) == 0 && r.shape.uncross.slivers_after <= r.slivers_at_rim && r.mean_min_angle_deg >= GOOD_MEAN_ANGLE_DEG;
     let mut best: Option<FromCap> = None;
     let keep = |r: FromCap, best: &mut Option<FromCap>| {
         if best.as_ref().map_or(true, |b| key(&r) < key(b)) {
             *best = Some(r);
         }
     };
+    let mut starts = 0;
     let t = Instant::now();
     let isotropic = sample::grid_is_isotropic(&cap, place);
     let mut sample_seconds = t.elapsed().as_secs_f64();
@@ -88,7 +98,9 @@ pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64
             let Some(start) = sample::isotropic_cap(&cap, surface_area, place, variant) else { break };
             sample_seconds += t.elapsed().as_secs_f64();
             let mut r = pull_back_and_optimize(ctx, start, progress)?;
+            starts += 1;
             r.shape.start = shape::Start::Sample;
+            r.shape.uncross.at_input_crossings = input_crossings.near(&r);
             keep(r, &mut best);
             if best.as_ref().is_some_and(good) {
                 break;
@@ -96,12 +108,54 @@ pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64
         }
     }
     if !best.as_ref().is_some_and(good) {
-        let r = pull_back_and_optimize(ctx, cap, progress)?;
+        let mut r = pull_back_and_optimize(ctx, cap, progress)?;
+        starts += 1;
+        r.shape.uncross.at_input_crossings = input_crossings.near(&r);
         keep(r, &mut best);
     }
     let mut best = best.ok_or_else(|| Error::Internal("no remesh start was tried".into()))?;
     best.pullback_seconds += sample_seconds;
+    best.shape.starts = starts;
     Ok(best)
+}
+
+/// The input's faces that cross another (MeshLab's test), found when a remesh first has a
+/// crossing face.
+struct InputCrossings<'a> {
+    mesh: &'a TriMesh,
+    crossing: std::cell::OnceCell<TriMesh>,
+}
+
+impl<'a> InputCrossings<'a> {
+    fn new(mesh: &'a TriMesh) -> Self {
+        Self { mesh, crossing: std::cell::OnceCell::new() }
+    }
+
+    /// How many crossing faces of `r`'s remesh have their centroid within two remesh edge
+    /// lengths (equilateral faces of the mean area) of a crossing face of the input.
+    fn near(&self, r: &FromCap) -> usize {
+        if r.shape.uncross.after == 0 {
+            return 0;
+        }
+        let crossing = self.crossing.get_or_init(|| {
+            let faces: Vec<[u32; 3]> = self_intersecting_faces(self.mesh).into_iter().map(|f| self.mesh.faces[f as usize]).collect();
+            TriMesh::new(self.mesh.vertices.clone(), faces)
+        });
+        if crossing.faces.is_empty() || r.faces.is_empty() {
+            return 0;
+        }
+        let remesh = TriMesh::new(r.positions.clone(), r.faces.clone());
+        let area: f64 = remesh.faces.iter().map(|f| triangle_area(remesh.vertices[f[0] as usize], remesh.vertices[f[1] as usize], remesh.vertices[f[2] as usize])).sum();
+        let reach = 2.0 * (4.0 * area / (3f64.sqrt() * remesh.faces.len() as f64)).sqrt();
+        let distance = SurfaceDistance::new(crossing);
+        self_intersecting_faces(&remesh)
+            .into_iter()
+            .filter(|&f| {
+                let [a, b, c] = remesh.faces[f as usize].map(|v| remesh.vertices[v as usize]);
+                distance.distance(std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)) <= reach
+            })
+            .count()
+    }
 }
 
 /// Pull `cap` (rim ring last) back onto the surface of `ctx` and run the stages after it.

@@ -127,6 +127,9 @@ pub enum Start {
 pub struct ShapeReport {
     /// The points it started from.
     pub start: Start,
+    /// Starts whose remesh was made (`super::from_cap::from_best_start`: isotropic samples,
+    /// then the cap grid, until one meets the quality bar).
+    pub starts: usize,
     /// Iterations made.
     pub iterations: usize,
     /// Edge flips over all iterations.

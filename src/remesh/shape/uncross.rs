@@ -46,6 +46,9 @@ pub struct UncrossReport {
     pub before: usize,
     /// Self-crossing faces after it.
     pub after: usize,
+    /// Of those, faces within two remesh edge lengths of a face of the input that crosses
+    /// another (crossings a remesh on the surface inherits; `super::super::from_cap`).
+    pub at_input_crossings: usize,
     /// Vertex moves made.
     pub moves: usize,
     /// Edge flips made.
