@@ -418,6 +418,59 @@ pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift, crease: f64) -> Un
 mod tests {
     use super::*;
 
+    /// A flat hexagon fanned around free vertex 0, raised to a spike of height 1, and a face
+    /// hanging from corner 1 across it, its two far corners at height `hang` (the other
+    /// vertices stay).
+    fn spike_under(hang: f64) -> Shaping {
+        let mut plane = vec![[0.0, 0.0]];
+        plane.extend((0..6).map(|i| {
+            let a = i as f64 * std::f64::consts::PI / 3.0;
+            [a.cos(), a.sin()]
+        }));
+        plane.extend([[2.0, -0.5], [2.0, 0.5]]);
+        let mut position: Vec<[f64; 3]> = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        position[0] = [0.0, 0.0, 1.0];
+        position[7] = [-1.5, -1.5, hang];
+        position[8] = [-1.5, 1.5, hang];
+        let mut faces: Vec<[u32; 3]> = (1..=6u32).map(|i| [0, i, i % 6 + 1]).collect();
+        faces.push([1, 7, 8]);
+        let role: Vec<Role> = (0..9).map(|v| if v == 0 { Role::Free } else { Role::Fixed }).collect();
+        Shaping { faces, plane, position, hint: vec![u32::MAX; 9], role, has_plane: vec![true; 9], orientation: 1.0 }
+    }
+
+    fn crossing(m: &Shaping) -> Vec<u32> {
+        self_intersecting_faces(&TriMesh::new(m.position.clone(), m.faces.clone()))
+    }
+
+    /// The spike pierces the hanging face; no flip or move is tried here: collapsing the spike
+    /// into a neighbour removes two faces, leaves the rest flat and oriented, and no face
+    /// crosses.
+    #[test]
+    fn a_spike_through_a_face_is_collapsed() {
+        let mut mesh = spike_under(0.5);
+        let flagged = crossing(&mesh);
+        assert!(flagged.len() >= 2 && flagged.contains(&6), "{flagged:?}");
+        assert_eq!(uncross_by_collapse(&mut mesh, &flagged), 1);
+        assert_eq!(mesh.faces.len(), 5);
+        assert!(mesh.faces.iter().all(|f| !f.contains(&0)), "{:?}", mesh.faces);
+        assert!(crossing(&mesh).is_empty(), "{:?}", crossing(&mesh));
+        for f in &mesh.faces {
+            let p = f.map(|v| mesh.plane[v as usize]);
+            assert!(mesh.oriented(p[0], p[1], p[2], 0.0), "{f:?}");
+        }
+    }
+
+    /// The face hangs above the spike's tip: nothing crosses, so a collapse (asked for here
+    /// with the spike's first face flagged) would lower no crossing and is refused.
+    #[test]
+    fn a_spike_that_crosses_nothing_stays() {
+        let mut mesh = spike_under(5.0);
+        let before = mesh.faces.clone();
+        assert!(crossing(&mesh).is_empty());
+        assert_eq!(uncross_by_collapse(&mut mesh, &[0]), 0);
+        assert_eq!(mesh.faces, before);
+    }
+
     /// Two slivers with the same short edge: counted when both of its ends stay, not when one
     /// of them is free; a fat face and a face without a planar point are no slivers.
     #[test]
