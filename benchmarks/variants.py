@@ -1,12 +1,16 @@
-"""Remesh quality on re-triangulated copies of the bundled meshes (issue 26: "the same figures
+"""Remesh quality on re-triangulated and subdivided copies of the bundled meshes (issue 26: "the same figures
 hold on anatomical meshes that are not in the repository").
 
-Each mesh of tests/data is re-triangulated twice with pymeshlab, so that capmesh sees the same
+Each mesh of tests/data is re-triangulated with pymeshlab, so that capmesh sees the same
 anatomy through a triangulation it was never developed on:
 - `iso`: MeshLab's isotropic explicit remeshing (5 iterations, target edge 0.8% of the
   bounding-box diagonal): regular triangles, a different vertex count;
 - `dec`: MeshLab's quadric edge-collapse decimation to a third of the faces (at least 2000),
-  topology and boundary kept: the anisotropic, graded triangles of a simplified scan.
+  topology and boundary kept: the anisotropic, graded triangles of a simplified scan;
+- `sub` (meshes of fewer than SUB_BELOW faces): MeshLab's midpoint subdivision, every edge
+  split, until the copy has at least SUB_TO faces: the same surface as finely triangulated
+  as a segmented scan (issue 27: a subdivided mesh must map and remesh as well as its coarse
+  version).
 Then `capmesh remesh --faces N` runs on each copy (N = 5000 and 10000 by default), and the table gives the figures of the
 issue's bars, each marked where it misses: d_face_rel <= 0.035 (0.08 on the hand and the bird
 skull), mean smallest angle >= 48 degrees, <= 2% of faces below 30 degrees, smallest angle
@@ -40,8 +44,12 @@ MESHES = [
 ]
 
 
+# The `sub` copies: meshes below SUB_BELOW faces, subdivided until they have SUB_TO faces.
+SUB_BELOW, SUB_TO = 20000, 40000
+
+
 def variants(name, work):
-    """Write the `iso` and `dec` copies of mesh `name` into `work`; returns {variant: (path, faces)}."""
+    """Write the `iso`, `dec` and (small meshes) `sub` copies of mesh `name` into `work`; returns {variant: (path, faces)}."""
     src = os.path.join(work, name + ".obj")
     with gzip.open(os.path.join(DATA, name + ".obj.gz")) as f, open(src, "wb") as g:
         shutil.copyfileobj(f, g)
@@ -57,6 +65,13 @@ def variants(name, work):
     ms.meshing_decimation_quadric_edge_collapse(targetfacenum=max(2000, faces // 3), preservetopology=True, preserveboundary=True)
     out["dec"] = (os.path.join(work, name + "_dec.obj"), ms.current_mesh().face_number())
     ms.save_current_mesh(out["dec"][0])
+    if faces < SUB_BELOW:
+        ms = pymeshlab.MeshSet()
+        ms.load_new_mesh(src)
+        while ms.current_mesh().face_number() < SUB_TO:
+            ms.meshing_surface_subdivision_midpoint(iterations=1, threshold=pymeshlab.PercentageValue(0))
+        out["sub"] = (os.path.join(work, name + "_sub.obj"), ms.current_mesh().face_number())
+        ms.save_current_mesh(out["sub"][0])
     return out
 
 
@@ -116,12 +131,13 @@ def write(rows, args):
         json.dump(rows, f, indent=1)
     ok = [r for r in rows if "error" not in r]
     lines = [
-        "# Remesh quality on re-triangulated copies of the bundled meshes",
+        "# Remesh quality on re-triangulated and subdivided copies of the bundled meshes",
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores; {platform.platform()}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}.",
         f"One run of `bash benchmarks/variants.sh`: each mesh of tests/data re-triangulated by pymeshlab 2025.7.post1",
         "(`iso`: isotropic explicit remeshing, 5 iterations, target edge 0.8% of the diagonal; `dec`: quadric",
-        "edge-collapse decimation to a third of the faces, at least 2000, topology and boundary kept), then",
+        "edge-collapse decimation to a third of the faces, at least 2000, topology and boundary kept; `sub`, meshes",
+        f"below {SUB_BELOW} faces: midpoint subdivision, every edge split, until the copy has {SUB_TO} faces or more), then",
         f"`capmesh remesh COPY --faces N` (N = {args.faces.replace(',', ', ')}) with the default options. Bars of issue 26 (set for 5000 faces): d_face_rel <= 0.035",
         "(0.08 on the hand and the bird skull), mean smallest angle >= 48, <= 2% of faces below 30 degrees, smallest",
         "angle >= 15, no more self-intersecting faces than the copy; `misses` names the bars a row misses.",

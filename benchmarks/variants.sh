@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Remesh quality on re-triangulated copies (MeshLab isotropic remeshing and quadric decimation)
+# Remesh quality on re-triangulated and subdivided copies (MeshLab isotropic remeshing, quadric decimation, midpoint subdivision)
 # of the bundled meshes: builds capmesh, installs pinned pymeshlab into benchmarks/.venv, runs
 # benchmarks/variants.py (arguments passed on, e.g. --faces 20000, --meshes closed_bunny_npm).
 # Writes benchmarks/results/variants.{md,json}.
