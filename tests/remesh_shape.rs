@@ -167,6 +167,27 @@ fn closed_lung_lobe_decimated() {
     assert!(rep.quality.min_angle_deg >= 15.0, "smallest angle {:.1}", rep.quality.min_angle_deg);
 }
 
+/// The bunny subdivided twice (58784 faces, the same surface): the end the radius search
+/// keeps (its search map within 2% of the other's) maps poorly around the puncture and its
+/// remesh misses the bar, so the other end is mapped and remeshed too and the better kept.
+#[test]
+fn closed_bunny_subdivided_twice_tries_the_other_end() {
+    let mesh = capmesh::mesh::subdivide_midpoint(&load("closed_bunny_npm.obj.gz"), 2);
+    let (out, rep) = run(&mesh, Optimize::ShapeAndArea);
+    let a = angle_quality(&out);
+    eprintln!("subdivided bunny: ends {}, mean smallest angle {:.2}, smallest {:.1}, d_face_rel {:.4}", rep.shape.ends, a.mean_min_angle_deg, a.min_angle_deg, rep.quality.d_face_relative);
+    assert_eq!(rep.shape.ends, 2);
+    let finished: Vec<f64> = rep.param.puncture_trials.iter().filter_map(|t| t.mean_abs_area_distortion).collect();
+    assert_eq!(finished.len(), 2, "{:?}", rep.param.puncture_trials);
+    // The bars at 5000 faces (the first end's remesh: d_face_rel 0.049, smallest angle
+    // 6.0, mean smallest angle 47.3-48.0).
+    assert!(a.mean_min_angle_deg >= 48.0, "mean smallest angle {:.2}", a.mean_min_angle_deg);
+    assert!(a.min_angle_deg >= 15.0, "smallest angle {:.1}", a.min_angle_deg);
+    assert!(rep.quality.d_face_relative <= 0.035, "d_face_rel {:.4}", rep.quality.d_face_relative);
+    assert_eq!(rep.quality.self_intersecting_faces, 0);
+    assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
+}
+
 #[test]
 fn closed_hippocampus() {
     check("closed_hippocampus_choi.obj.gz");

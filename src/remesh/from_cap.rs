@@ -67,6 +67,23 @@ pub(crate) struct FromCap {
 /// not to be tried: the bar of issue 26.
 const GOOD_MEAN_ANGLE_DEG: f64 = 48.0;
 
+/// Whether a remesh made by the shape stage meets the bar of [`GOOD_MEAN_ANGLE_DEG`]: no
+/// crossing face of its own, no sliver but at the rim, the mean smallest angle.
+pub(crate) fn meets_bar(r: &FromCap) -> bool {
+    own_crossings(r) == 0 && r.shape.uncross.slivers_after <= r.slivers_at_rim && r.mean_min_angle_deg >= GOOD_MEAN_ANGLE_DEG
+}
+
+/// The order in which remeshes are preferred (lowest first): crossing faces of their own, then
+/// slivers, then the higher mean smallest angle.
+pub(crate) fn rank(r: &FromCap) -> (usize, usize, f64) {
+    (own_crossings(r), r.shape.uncross.slivers_after, -r.mean_min_angle_deg)
+}
+
+/// Crossing faces not at the input's own crossings.
+fn own_crossings(r: &FromCap) -> usize {
+    r.shape.uncross.after - r.shape.uncross.at_input_crossings
+}
+
 /// The shape stage's remesh from the best start (docs/method.md section 18, "Isotropic
 /// start"): `cap`'s lift when it is near-isotropic; else isotropic samples of the surface
 /// (`place` lifts cap points, `surface_area` is the input's), then `cap` itself, until a remesh
@@ -79,12 +96,10 @@ pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64
     // Crossing faces of a start's remesh that lie at crossings of the input are inherited
     // from it (any remesh on the surface has them): only the others count against a start.
     let input_crossings = InputCrossings::new(ctx.mesh);
-    let own = |r: &FromCap| r.shape.uncross.after - r.shape.uncross.at_input_crossings;
-    let key = |r: &FromCap| (own(r), r.shape.uncross.slivers_after, -r.mean_min_angle_deg);
-    let good = |r: &FromCap| own(r) == 0 && r.shape.uncross.slivers_after <= r.slivers_at_rim && r.mean_min_angle_deg >= GOOD_MEAN_ANGLE_DEG;
+    let good = meets_bar;
     let mut best: Option<FromCap> = None;
     let keep = |r: FromCap, best: &mut Option<FromCap>| {
-        if best.as_ref().map_or(true, |b| key(&r) < key(b)) {
+        if best.as_ref().map_or(true, |b| rank(&r) < rank(b)) {
             *best = Some(r);
         }
     };
@@ -116,6 +131,7 @@ pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64
     let mut best = best.ok_or_else(|| Error::Internal("no remesh start was tried".into()))?;
     best.pullback_seconds += sample_seconds;
     best.shape.starts = starts;
+    best.shape.ends = 1;
     Ok(best)
 }
 

@@ -12,9 +12,9 @@ pub(crate) mod sizing;
 pub(crate) mod transfer;
 
 use crate::refine::area_refine::AreaRefineReport;
-use crate::param::{parameterize, ParamOptions, ParamReport};
+use crate::param::{parameterize, ParamOptions, ParamReport, PunctureEnd};
 use crate::error::Error;
-use crate::cap::{stereographic, SurfacePoint};
+use crate::cap::{stereographic, CapMap, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
 use crate::mesh::geometry::triangle_area;
 use crate::mesh::{SurfaceKind, TriMesh};
@@ -225,15 +225,9 @@ pub fn remesh_located(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Pr
     crate::pool::on_pool(progress, |progress| remesh_here(mesh, options, progress, true))
 }
 
-/// [`remesh`] on the current thread; the surface points only when `locate`.
-fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
-    let start = Instant::now();
-    // Refused before the parameterization, which would be wasted.
-    let asked = options.grid.approximate_faces();
-    if asked > MAX_GRID_FACES {
-        return Err(Error::InvalidOption(format!("a cap mesh of about {asked} faces is more than capmesh remeshes (at most {MAX_GRID_FACES}); ask for fewer faces, rings or sectors")));
-    }
-    let map = parameterize(mesh, &options.param, progress)?;
+/// The pull-back of the cap grid of `options` through `map` and the stages after it; each
+/// remesh vertex's surface point too when `locate`.
+fn remesh_with(mesh: &TriMesh, map: &CapMap, options: &RemeshOptions, shaped: bool, locate: bool, progress: &dyn Progress) -> Result<(from_cap::FromCap, Vec<SurfacePoint>), Error> {
     let closed = map.report.kind != SurfaceKind::OpenDisk;
     let z_star = map.report.z_star.ok_or_else(|| Error::InvalidOption("remeshing needs a spherical cap domain, not the planar disk".into()))?;
     progress::check(progress, Stage::Remesh, 0.0, "pulling the cap mesh back")?;
@@ -244,8 +238,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     // The inverse map, its point location built once for the pull-back and the shape stage.
     let inverse = map.inverse(mesh)?;
     let input_boundary = is_boundary_vertex(mesh);
-    let shaped = options.optimize == Optimize::ShapeAndArea && matches!(options.grid, CapGrid::Uniform { .. });
-    let ctx = from_cap::Context { mesh, map: &map, inverse: &inverse, options, closed, shaped, input_boundary: &input_boundary };
+    let ctx = from_cap::Context { mesh, map, inverse: &inverse, options, closed, shaped, input_boundary: &input_boundary };
     let result = if shaped {
         // The shape stage starts from an isotropic sample of the surface where the grid's
         // lift is stretched ([`from_cap::from_best_start`]). Cap points are lifted as in the
@@ -265,8 +258,65 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     } else {
         from_cap::pull_back_and_optimize(&ctx, cap, progress)?
     };
-    let from_cap::FromCap { faces, planar, positions, has_plane, shape: shape_report, equalization, pullback_seconds, shape_seconds, equalize_seconds, .. } = result;
-    let points = if locate { transfer::surface_points(&inverse, &planar, &has_plane, &positions) } else { Vec::new() };
+    let points = if locate { transfer::surface_points(&inverse, &result.planar, &result.has_plane, &result.positions) } else { Vec::new() };
+    Ok((result, points))
+}
+
+/// The other end of a closed map punctured at the end [`PunctureEnd::Best`] kept: the trial
+/// without a finished map (`None` when the map had no two trials).
+fn other_end(map: &CapMap) -> Option<PunctureEnd> {
+    match &map.report.puncture_trials[..] {
+        [bottom, top] if bottom.mean_abs_area_distortion.is_some() && top.mean_abs_area_distortion.is_none() => Some(PunctureEnd::Top),
+        [bottom, top] if top.mean_abs_area_distortion.is_some() && bottom.mean_abs_area_distortion.is_none() => Some(PunctureEnd::Bottom),
+        _ => None,
+    }
+}
+
+/// [`remesh`] on the current thread; the surface points only when `locate`.
+///
+/// A closed surface whose shape-stage remesh misses the quality bar
+/// ([`from_cap::meets_bar`]) with [`PunctureEnd::Best`] is mapped again punctured at the
+/// other end and remeshed from that map; the better remesh is kept ([`from_cap::rank`]). The
+/// two ends' search maps often tie, and the finished maps then differ near the puncture
+/// (docs/method.md section 18, "Finely triangulated inputs").
+fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
+    let start = Instant::now();
+    // Refused before the parameterization, which would be wasted.
+    let asked = options.grid.approximate_faces();
+    if asked > MAX_GRID_FACES {
+        return Err(Error::InvalidOption(format!("a cap mesh of about {asked} faces is more than capmesh remeshes (at most {MAX_GRID_FACES}); ask for fewer faces, rings or sectors")));
+    }
+    let mut map = parameterize(mesh, &options.param, progress)?;
+    let shaped = options.optimize == Optimize::ShapeAndArea && matches!(options.grid, CapGrid::Uniform { .. });
+    let (mut result, mut points) = remesh_with(mesh, &map, options, shaped, locate, progress)?;
+    let closed = map.report.kind != SurfaceKind::OpenDisk;
+    if shaped && closed && options.param.closed.puncture_end == PunctureEnd::Best && !from_cap::meets_bar(&result) {
+        if let Some(other) = other_end(&map) {
+            let mut param = options.param.clone();
+            param.closed.puncture_end = other;
+            // The other end failing is no reason to fail the remesh already made (unless the
+            // user cancelled).
+            let other = parameterize(mesh, &param, progress).and_then(|m| remesh_with(mesh, &m, options, shaped, locate, progress).map(|r| (m, r)));
+            if let Err(e @ Error::Cancelled(_)) = other {
+                return Err(e);
+            }
+            if let Ok((other_map, (other_result, other_points))) = other {
+                // Both ends finished: the kept map's report gives both final maps.
+                let mut trials = map.report.puncture_trials.clone();
+                for t in &mut trials {
+                    if other_map.report.puncture.as_ref().is_some_and(|p| p.axis == t.axis) {
+                        t.mean_abs_area_distortion = Some(other_map.report.area_distortion.mean_abs);
+                    }
+                }
+                if from_cap::rank(&other_result) < from_cap::rank(&result) {
+                    (map, result, points) = (other_map, other_result, other_points);
+                }
+                map.report.puncture_trials = trials;
+                result.shape.ends = 2;
+            }
+        }
+    }
+    let from_cap::FromCap { faces, planar: _, positions, has_plane: _, shape: shape_report, equalization, pullback_seconds, shape_seconds, equalize_seconds, .. } = result;
     let out = TriMesh::new(positions, faces);
     let t_metrics = Instant::now();
     let quality = remesh_metrics(mesh, &out);

@@ -130,6 +130,9 @@ pub struct ShapeReport {
     /// Starts whose remesh was made (`super::from_cap::from_best_start`: isotropic samples,
     /// then the cap grid, until one meets the quality bar).
     pub starts: usize,
+    /// Puncture ends whose map was remeshed: 2 when a closed surface's remesh missed the bar
+    /// and the other end's map was remeshed too (`super::remesh`, the better kept), else 1.
+    pub ends: usize,
     /// Iterations made.
     pub iterations: usize,
     /// Edge flips over all iterations.
