@@ -81,7 +81,7 @@ pub(crate) fn rank(r: &FromCap) -> (usize, usize, f64) {
 
 /// Crossing faces not at the input's own crossings.
 fn own_crossings(r: &FromCap) -> usize {
-    r.shape.uncross.after - r.shape.uncross.at_input_crossings
+    r.shape.uncross.after.saturating_sub(r.shape.uncross.at_input_crossings)
 }
 
 /// The shape stage's remesh from the best start (docs/method.md section 18, "Isotropic

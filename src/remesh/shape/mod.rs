@@ -131,7 +131,8 @@ pub struct ShapeReport {
     /// then the cap grid, until one meets the quality bar).
     pub starts: usize,
     /// Puncture ends whose map was remeshed: 2 when a closed surface's remesh missed the bar
-    /// and the other end's map was remeshed too (`super::remesh`, the better kept), else 1.
+    /// and the other end's map was remeshed too (`super::remesh`, the better kept), 1
+    /// otherwise, 0 when the stage did not run.
     pub ends: usize,
     /// Iterations made.
     pub iterations: usize,
