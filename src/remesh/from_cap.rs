@@ -7,7 +7,7 @@
 use super::{equalize, grid, polygon_of, pullback, sample, shape, sizing, Optimize, RemeshOptions};
 use crate::cap::{stereographic, CapMap, InverseMap};
 use crate::error::Error;
-use crate::mesh::geometry::triangle_area;
+use crate::mesh::geometry::{face_areas, triangle_area};
 use crate::mesh::TriMesh;
 use crate::metrics::self_intersection::self_intersecting_faces;
 use crate::metrics::closest::SurfaceDistance;
@@ -32,6 +32,8 @@ pub(crate) struct Context<'a> {
     pub shaped: bool,
     /// The input's boundary vertices (none on a closed surface).
     pub input_boundary: &'a [bool],
+    /// The input's own crossing faces, shared by both puncture ends' remeshes.
+    pub input_crossings: &'a InputCrossings<'a>,
 }
 
 /// A cap mesh pulled back and optimized.
@@ -95,8 +97,7 @@ fn own_crossings(r: &FromCap) -> usize {
 pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>, surface_area: f64, progress: &dyn Progress) -> Result<FromCap, Error> {
     // Crossing faces of a start's remesh that lie at crossings of the input are inherited
     // from it (any remesh on the surface has them): only the others count against a start.
-    let input_crossings = InputCrossings::new(ctx.mesh);
-    let good = meets_bar;
+    let input_crossings = ctx.input_crossings;
     let mut best: Option<FromCap> = None;
     let keep = |r: FromCap, best: &mut Option<FromCap>| {
         if best.as_ref().map_or(true, |b| rank(&r) < rank(b)) {
@@ -117,12 +118,12 @@ pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64
             r.shape.start = shape::Start::Sample;
             r.shape.uncross.at_input_crossings = input_crossings.near(&r);
             keep(r, &mut best);
-            if best.as_ref().is_some_and(good) {
+            if best.as_ref().is_some_and(meets_bar) {
                 break;
             }
         }
     }
-    if !best.as_ref().is_some_and(good) {
+    if !best.as_ref().is_some_and(meets_bar) {
         let mut r = pull_back_and_optimize(ctx, cap, progress)?;
         starts += 1;
         r.shape.uncross.at_input_crossings = input_crossings.near(&r);
@@ -137,13 +138,13 @@ pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64
 
 /// The input's faces that cross another (MeshLab's test), found when a remesh first has a
 /// crossing face.
-struct InputCrossings<'a> {
+pub(crate) struct InputCrossings<'a> {
     mesh: &'a TriMesh,
     crossing: std::cell::OnceCell<TriMesh>,
 }
 
 impl<'a> InputCrossings<'a> {
-    fn new(mesh: &'a TriMesh) -> Self {
+    pub(crate) fn new(mesh: &'a TriMesh) -> Self {
         Self { mesh, crossing: std::cell::OnceCell::new() }
     }
 
@@ -160,9 +161,9 @@ impl<'a> InputCrossings<'a> {
         if crossing.faces.is_empty() || r.faces.is_empty() {
             return 0;
         }
+        let area: f64 = face_areas(&r.positions, &r.faces).iter().sum();
+        let reach = 2.0 * (4.0 * area / (3f64.sqrt() * r.faces.len() as f64)).sqrt();
         let remesh = TriMesh::new(r.positions.clone(), r.faces.clone());
-        let area: f64 = remesh.faces.iter().map(|f| triangle_area(remesh.vertices[f[0] as usize], remesh.vertices[f[1] as usize], remesh.vertices[f[2] as usize])).sum();
-        let reach = 2.0 * (4.0 * area / (3f64.sqrt() * remesh.faces.len() as f64)).sqrt();
         let distance = SurfaceDistance::new(crossing);
         self_intersecting_faces(&remesh)
             .into_iter()
@@ -176,7 +177,7 @@ impl<'a> InputCrossings<'a> {
 
 /// Pull `cap` (rim ring last) back onto the surface of `ctx` and run the stages after it.
 pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn Progress) -> Result<FromCap, Error> {
-    let Context { mesh, map, inverse, options, closed, shaped, input_boundary } = *ctx;
+    let Context { mesh, map, inverse, options, closed, shaped, input_boundary, .. } = *ctx;
     let t_pull = Instant::now();
     let no_face = || Error::Unsupported("the parameterized mesh has no face to pull back from".into());
     let top_faces: Vec<[u32; 3]> = (0..mesh.n_faces()).filter(|f| !map.bottom_faces.contains(f)).map(|f| mesh.faces[f]).collect();

@@ -227,7 +227,7 @@ pub fn remesh_located(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Pr
 
 /// The pull-back of the cap grid of `options` through `map` and the stages after it; each
 /// remesh vertex's surface point too when `locate`.
-fn remesh_with(mesh: &TriMesh, map: &CapMap, options: &RemeshOptions, shaped: bool, locate: bool, progress: &dyn Progress) -> Result<(from_cap::FromCap, Vec<SurfacePoint>), Error> {
+fn remesh_with(mesh: &TriMesh, map: &CapMap, options: &RemeshOptions, shaped: bool, locate: bool, input_crossings: &from_cap::InputCrossings, progress: &dyn Progress) -> Result<(from_cap::FromCap, Vec<SurfacePoint>), Error> {
     let closed = map.report.kind != SurfaceKind::OpenDisk;
     let z_star = map.report.z_star.ok_or_else(|| Error::InvalidOption("remeshing needs a spherical cap domain, not the planar disk".into()))?;
     progress::check(progress, Stage::Remesh, 0.0, "pulling the cap mesh back")?;
@@ -238,7 +238,7 @@ fn remesh_with(mesh: &TriMesh, map: &CapMap, options: &RemeshOptions, shaped: bo
     // The inverse map, its point location built once for the pull-back and the shape stage.
     let inverse = map.inverse(mesh)?;
     let input_boundary = is_boundary_vertex(mesh);
-    let ctx = from_cap::Context { mesh, map, inverse: &inverse, options, closed, shaped, input_boundary: &input_boundary };
+    let ctx = from_cap::Context { mesh, map, inverse: &inverse, options, closed, shaped, input_boundary: &input_boundary, input_crossings };
     let result = if shaped {
         // The shape stage starts from an isotropic sample of the surface where the grid's
         // lift is stretched ([`from_cap::from_best_start`]). Cap points are lifted as in the
@@ -288,7 +288,9 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     }
     let mut map = parameterize(mesh, &options.param, progress)?;
     let shaped = options.optimize == Optimize::ShapeAndArea && matches!(options.grid, CapGrid::Uniform { .. });
-    let (mut result, mut points) = remesh_with(mesh, &map, options, shaped, locate, progress)?;
+    // The input's crossing faces, found once for both puncture ends if a remesh crosses.
+    let input_crossings = from_cap::InputCrossings::new(mesh);
+    let (mut result, mut points) = remesh_with(mesh, &map, options, shaped, locate, &input_crossings, progress)?;
     let closed = map.report.kind != SurfaceKind::OpenDisk;
     if shaped && closed && options.param.closed.puncture_end == PunctureEnd::Best && !from_cap::meets_bar(&result) {
         if let Some(other) = other_end(&map) {
@@ -296,7 +298,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
             param.closed.puncture_end = other;
             // The other end failing is no reason to fail the remesh already made (unless the
             // user cancelled).
-            let other = parameterize(mesh, &param, progress).and_then(|m| remesh_with(mesh, &m, options, shaped, locate, progress).map(|r| (m, r)));
+            let other = parameterize(mesh, &param, progress).and_then(|m| remesh_with(mesh, &m, options, shaped, locate, &input_crossings, progress).map(|r| (m, r)));
             if let Err(e @ Error::Cancelled(_)) = other {
                 return Err(e);
             }
