@@ -6,7 +6,9 @@ Methods, all at the same face count (TARGET, 5000 by default):
   arguments from `--capmesh-args` or the CAPMESH_ARGS environment variable (e.g.
   `--capmesh-args "--optimize area"`, to compare variants);
 - capmesh_curv: the same with `--sizing curvature` (smaller faces where the surface is curved);
-- MeshLab (pymeshlab): isotropic explicit remeshing (target edge length), uniform mesh
+- MeshLab (pymeshlab): isotropic explicit remeshing (target edge length; its defaults keep
+  edges whose faces meet at more than 30 degrees as features), the same with feature edges off
+  (`featuredeg` 180: every edge may be flipped, collapsed and smoothed across), uniform mesh
   resampling (marching cubes on a distance field, cell size) and screened Poisson
   reconstruction (depth 8, then quadric edge collapse to a face count);
 - pyacvd (ACVD clustering, number of clusters; the input is subdivided first when it has
@@ -82,6 +84,7 @@ METHODS = {
     "capmesh": ("capmesh", "count"),
     "capmesh_curv": ("capmesh --sizing curvature", "count"),
     "isotropic": ("MeshLab isotropic explicit remeshing", "length"),
+    "isotropic_nf": ("MeshLab isotropic explicit remeshing, feature edges off", "length"),
     "resampling": ("MeshLab uniform mesh resampling", "length"),
     "poisson": ("MeshLab screened Poisson + decimation", "count"),
     "acvd": ("pyacvd (ACVD clustering)", "count"),
@@ -162,7 +165,7 @@ def _trim_far(ms, original_id, tol_fraction):
 def run_library(method, obj, param, out, is_open):
     """Remesh `obj` by `method` with size parameter `param`; write `out` (OBJ). Returns
     (seconds of the remeshing call alone, faces written)."""
-    if method in ("isotropic", "resampling", "poisson"):
+    if method in ("isotropic", "isotropic_nf", "resampling", "poisson"):
         import pymeshlab as ml
 
         ms = ml.MeshSet()
@@ -172,6 +175,8 @@ def run_library(method, obj, param, out, is_open):
         t0 = time.perf_counter()
         if method == "isotropic":
             ms.meshing_isotropic_explicit_remeshing(targetlen=ml.PercentageValue(100.0 * param / diag), iterations=10)
+        elif method == "isotropic_nf":
+            ms.meshing_isotropic_explicit_remeshing(targetlen=ml.PercentageValue(100.0 * param / diag), iterations=10, featuredeg=180.0)
         elif method == "resampling":
             ms.generate_resampled_uniform_mesh(cellsize=ml.PercentageValue(100.0 * param / diag), offset=ml.PercentageValue(50.0), mergeclosevert=True)
             _trim_far(ms, original, 0.01)
@@ -286,6 +291,7 @@ def initial_param(method, stats, target):
         "capmesh": target,
         "capmesh_curv": target,
         "isotropic": edge,
+        "isotropic_nf": edge,
         "resampling": edge,
         "poisson": target,
         "acvd": target / 2.0,

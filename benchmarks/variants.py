@@ -11,6 +11,11 @@ anatomy through a triangulation it was never developed on:
   split, until the copy has at least SUB_TO faces: the same surface as finely triangulated
   as a segmented scan (issue 27: a subdivided mesh must map and remesh as well as its coarse
   version).
+- `mc` (closed meshes): a voxel segmentation of the inside (voxel MC_VOXEL of the longest side, inside by
+  gpytoolbox's signed distance, a 3-tap blur along each axis) turned into a surface by scikit-image's
+  marching cubes (Lewiner), the largest component kept: the terraced triangulation of a CT/MRI
+  segmentation. capmesh refuses a copy that touches itself (a pinched vertex, as a folded cortex
+  segmented this coarsely does): the row then gives its error.
 Then `capmesh remesh --faces N` runs on each copy (N = 5000 and 10000 by default), and the table gives the figures of the
 issue's bars, each marked where it misses: d_face_rel <= 0.035 (0.08 on the hand and the bird
 skull), mean smallest angle >= 48 degrees, <= 2% of faces below 30 degrees, smallest angle
@@ -44,6 +49,9 @@ MESHES = [
 ]
 
 
+# The `mc` copies: voxel edge as a share of the longest bounding-box side.
+MC_VOXEL = 0.01
+
 # The `sub` copies: meshes below SUB_BELOW faces, subdivided until they have SUB_TO faces.
 SUB_BELOW, SUB_TO = 20000, 40000
 
@@ -72,7 +80,56 @@ def variants(name, work):
             ms.meshing_surface_subdivision_midpoint(iterations=1, threshold=pymeshlab.PercentageValue(0))
         out["sub"] = (os.path.join(work, name + "_sub.obj"), ms.current_mesh().face_number())
         ms.save_current_mesh(out["sub"][0])
+    if name.startswith("closed_"):
+        out["mc"] = marching_cubes_copy(src, os.path.join(work, name + "_mc.obj"))
     return out
+
+
+def read_obj(path):
+    """Vertices and triangles of an OBJ file."""
+    import numpy as np
+
+    v, f = [], []
+    with open(path) as fh:
+        for line in fh:
+            if line.startswith("v "):
+                v.append([float(x) for x in line.split()[1:4]])
+            elif line.startswith("f "):
+                f.append([int(x.split("/")[0]) - 1 for x in line.split()[1:4]])
+    return np.array(v), np.array(f, dtype=np.int64)
+
+
+def marching_cubes_copy(src, dst):
+    """Write the `mc` copy of the closed mesh `src` to `dst`; returns (dst, faces)."""
+    import gpytoolbox
+    import numpy as np
+    from skimage.measure import marching_cubes
+
+    v, f = read_obj(src)
+    lo, hi = v.min(0), v.max(0)
+    h = MC_VOXEL * (hi - lo).max()
+    lo, hi = lo - 3 * h, hi + 3 * h
+    n = [int(np.ceil((hi[k] - lo[k]) / h)) + 1 for k in range(3)]
+    axes = [lo[k] + h * np.arange(n[k]) for k in range(3)]
+    grid = np.stack([a.ravel() for a in np.meshgrid(*axes, indexing="ij")], 1)
+    inside = gpytoolbox.signed_distance(grid, v, f)[0].reshape(n) < 0
+    field = np.where(inside, -1.0, 1.0)
+    for axis in range(3):
+        field = (np.roll(field, 1, axis) + 2 * field + np.roll(field, -1, axis)) / 4
+    mv, mf, _, _ = marching_cubes(field, 0.0, spacing=(h, h, h), allow_degenerate=False, method="lewiner")
+    mv, mf = mv + lo, mf[:, ::-1]
+    with open(dst, "w") as out:
+        out.write("".join("v %.9g %.9g %.9g\n" % tuple(p) for p in mv))
+        out.write("".join("f %d %d %d\n" % tuple(t + 1) for t in mf))
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(dst)
+    ms.meshing_remove_duplicate_vertices()
+    ms.meshing_remove_unreferenced_vertices()
+    ms.generate_splitting_by_connected_components()
+    largest = max(range(1, ms.mesh_number()), key=lambda k: ms.mesh(k).face_number())
+    ms.set_current_mesh(largest)
+    ms.save_current_mesh(dst, save_vertex_normal=False)
+    return dst, ms.current_mesh().face_number()
 
 
 def misses(name, r):
@@ -137,7 +194,9 @@ def write(rows, args):
         f"One run of `bash benchmarks/variants.sh`: each mesh of tests/data re-triangulated by pymeshlab 2025.7.post1",
         "(`iso`: isotropic explicit remeshing, 5 iterations, target edge 0.8% of the diagonal; `dec`: quadric",
         "edge-collapse decimation to a third of the faces, at least 2000, topology and boundary kept; `sub`, meshes",
-        f"below {SUB_BELOW} faces: midpoint subdivision, every edge split, until the copy has {SUB_TO} faces or more), then",
+        f"below {SUB_BELOW} faces: midpoint subdivision, every edge split, until the copy has {SUB_TO} faces or more; `mc`,",
+        f"closed meshes: marching cubes of a voxel segmentation of the inside, voxel {100 * MC_VOXEL:g}% of the longest side, see",
+        "benchmarks/variants.py), then",
         f"`capmesh remesh COPY --faces N` (N = {args.faces.replace(',', ', ')}) with the default options. Bars of issue 26 (set for 5000 faces): d_face_rel <= 0.035",
         "(0.08 on the hand and the bird skull), mean smallest angle >= 48, <= 2% of faces below 30 degrees, smallest",
         "angle >= 15, no more self-intersecting faces than the copy; `misses` names the bars a row misses.",

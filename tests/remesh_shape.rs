@@ -188,6 +188,22 @@ fn closed_bunny_subdivided_twice_tries_the_other_end() {
     assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
 }
 
+/// The same copy at 10000 faces: the first end's remesh meets the angle bar but spreads its
+/// areas (d_face_rel 0.049 before the area retry, above `RETRY_AREA_SPREAD` 0.04), so the
+/// other end is tried too and its evener remesh kept.
+#[test]
+fn closed_bunny_subdivided_twice_retries_the_other_end_for_its_areas() {
+    let mesh = capmesh::mesh::subdivide_midpoint(&load("closed_bunny_npm.obj.gz"), 2);
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 10000 });
+    let (out, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let a = angle_quality(&out);
+    eprintln!("subdivided bunny at 10000: ends {}, mean smallest angle {:.2}, d_face_rel {:.4}", rep.shape.ends, a.mean_min_angle_deg, rep.quality.d_face_relative);
+    assert_eq!(rep.shape.ends, 2);
+    assert!(rep.quality.d_face_relative <= 0.035, "d_face_rel {:.4}", rep.quality.d_face_relative);
+    assert!(a.mean_min_angle_deg >= 48.0, "mean smallest angle {:.2}", a.mean_min_angle_deg);
+    assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
+}
+
 #[test]
 fn closed_hippocampus() {
     check("closed_hippocampus_choi.obj.gz");

@@ -69,7 +69,12 @@ pub struct RemeshMetrics {
 
 /// Face area deviation `(d_face, d_face / mean area)`.
 pub fn face_area_deviation(mesh: &TriMesh) -> (f64, f64) {
-    let a = face_areas(&mesh.vertices, &mesh.faces);
+    area_deviation(&mesh.vertices, &mesh.faces)
+}
+
+/// [`face_area_deviation`] of the faces `faces` over `vertices`.
+pub(crate) fn area_deviation(vertices: &[[f64; 3]], faces: &[[u32; 3]]) -> (f64, f64) {
+    let a = face_areas(vertices, faces);
     if a.is_empty() {
         return (0.0, 0.0);
     }

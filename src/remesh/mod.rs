@@ -275,8 +275,10 @@ fn other_end(map: &CapMap) -> Option<PunctureEnd> {
 /// [`remesh`] on the current thread; the surface points only when `locate`.
 ///
 /// A closed surface whose shape-stage remesh misses the quality bar
-/// ([`from_cap::meets_bar`]) with [`PunctureEnd::Best`] is mapped again punctured at the
-/// other end and remeshed from that map; the better remesh is kept ([`from_cap::rank`]). The
+/// ([`from_cap::meets_bar`]) or, uniform, spreads its areas more than
+/// [`from_cap::RETRY_AREA_SPREAD`], with [`PunctureEnd::Best`], is mapped again punctured at
+/// the other end and remeshed from that map; the better remesh is kept
+/// ([`from_cap::end_rank`]). The
 /// two ends' search maps often tie, and the finished maps then differ near the puncture
 /// (docs/method.md section 18, "Finely triangulated inputs").
 fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
@@ -292,7 +294,8 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     let input_crossings = from_cap::InputCrossings::new(mesh);
     let (mut result, mut points) = remesh_with(mesh, &map, options, shaped, locate, &input_crossings, progress)?;
     let closed = map.report.kind != SurfaceKind::OpenDisk;
-    if shaped && closed && options.param.closed.puncture_end == PunctureEnd::Best && !from_cap::meets_bar(&result) {
+    let uniform = options.shape.sizing == sizing::Sizing::Uniform;
+    if shaped && closed && options.param.closed.puncture_end == PunctureEnd::Best && from_cap::end_worth_retrying(&result, uniform) {
         if let Some(other) = other_end(&map) {
             let mut param = options.param.clone();
             param.closed.puncture_end = other;
@@ -310,7 +313,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
                         t.mean_abs_area_distortion = Some(other_map.report.area_distortion.mean_abs);
                     }
                 }
-                if from_cap::rank(&other_result) < from_cap::rank(&result) {
+                if from_cap::end_rank(&other_result, uniform) < from_cap::end_rank(&result, uniform) {
                     (map, result, points) = (other_map, other_result, other_points);
                 }
                 map.report.puncture_trials = trials;
