@@ -174,7 +174,9 @@ def run_library(method, obj, param, out, is_open):
         diag = ms.current_mesh().bounding_box().diagonal()
         t0 = time.perf_counter()
         if method == "isotropic":
-            ms.meshing_isotropic_explicit_remeshing(targetlen=ml.PercentageValue(100.0 * param / diag), iterations=10)
+            # featuredeg given although it is MeshLab's default: pymeshlab keeps a filter's last
+            # parameters in the process, so the `isotropic_nf` call before would carry over.
+            ms.meshing_isotropic_explicit_remeshing(targetlen=ml.PercentageValue(100.0 * param / diag), iterations=10, featuredeg=30.0)
         elif method == "isotropic_nf":
             ms.meshing_isotropic_explicit_remeshing(targetlen=ml.PercentageValue(100.0 * param / diag), iterations=10, featuredeg=180.0)
         elif method == "resampling":
