@@ -204,6 +204,21 @@ fn closed_bunny_subdivided_twice_retries_the_other_end_for_its_areas() {
     assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
 }
 
+/// The closed hippocampus at 10000 faces: its punctured quad is between one and two remesh
+/// faces, so the rim ring and bottom disk are merged into one vertex (`MERGE_QUAD_FACES`);
+/// left as a ring bunched on the quad they gave a 15.0-degree sliver (19.8 merged).
+#[test]
+fn closed_hippocampus_at_10000_faces_merges_its_bottom() {
+    let mesh = load("closed_hippocampus_choi.obj.gz");
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 10000 });
+    let (out, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let a = angle_quality(&out);
+    eprintln!("hippocampus at 10000: smallest angle {:.1}, mean {:.2}, d_face_rel {:.4}", a.min_angle_deg, a.mean_min_angle_deg, rep.quality.d_face_relative);
+    assert!(a.min_angle_deg >= 17.0, "smallest angle {:.1}", a.min_angle_deg);
+    assert!(rep.quality.d_face_relative <= 0.035, "d_face_rel {:.4}", rep.quality.d_face_relative);
+    assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
+}
+
 #[test]
 fn closed_hippocampus() {
     check("closed_hippocampus_choi.obj.gz");
