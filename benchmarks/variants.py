@@ -164,7 +164,7 @@ def main():
                 run = subprocess.run([CAPMESH, "remesh", path, "-o", out, "--faces", faces, "--report", report, "--quiet"], capture_output=True, text=True)
                 seconds = time.perf_counter() - t
                 if run.returncode != 0:
-                    rows.append({"mesh": name, "variant": variant, "target": int(faces), "error": run.stderr.strip()[-300:], "exit": run.returncode})
+                    rows.append({"mesh": name, "variant": variant, "target": int(faces), "error": run.stderr.strip().replace(work + os.sep, "")[-300:], "exit": run.returncode})
                     print(f"{name} {variant} {faces}: exit {run.returncode}", file=sys.stderr)
                     continue
                 r = json.load(open(report))
