@@ -85,25 +85,13 @@ def variants(name, work):
     return out
 
 
-def read_obj(path):
-    """Vertices and triangles of an OBJ file."""
-    import numpy as np
-
-    v, f = [], []
-    with open(path) as fh:
-        for line in fh:
-            if line.startswith("v "):
-                v.append([float(x) for x in line.split()[1:4]])
-            elif line.startswith("f "):
-                f.append([int(x.split("/")[0]) - 1 for x in line.split()[1:4]])
-    return np.array(v), np.array(f, dtype=np.int64)
-
-
 def marching_cubes_copy(src, dst):
     """Write the `mc` copy of the closed mesh `src` to `dst`; returns (dst, faces)."""
     import gpytoolbox
     import numpy as np
     from skimage.measure import marching_cubes
+
+    from meshlab_compare import read_obj, write_obj
 
     v, f = read_obj(src)
     lo, hi = v.min(0), v.max(0)
@@ -117,10 +105,7 @@ def marching_cubes_copy(src, dst):
     for axis in range(3):
         field = (np.roll(field, 1, axis) + 2 * field + np.roll(field, -1, axis)) / 4
     mv, mf, _, _ = marching_cubes(field, 0.0, spacing=(h, h, h), allow_degenerate=False, method="lewiner")
-    mv, mf = mv + lo, mf[:, ::-1]
-    with open(dst, "w") as out:
-        out.write("".join("v %.9g %.9g %.9g\n" % tuple(p) for p in mv))
-        out.write("".join("f %d %d %d\n" % tuple(t + 1) for t in mf))
+    write_obj(dst, mv + lo, mf[:, ::-1])
     ms = pymeshlab.MeshSet()
     ms.load_new_mesh(dst)
     ms.meshing_remove_duplicate_vertices()
