@@ -61,7 +61,8 @@ pub(crate) struct FromCap {
     /// The remesh's d_face_rel (mean |area - mean area| / mean area).
     pub d_face_relative: f64,
     /// Slivers left whose shortest edge joins two vertices that stay (a closed surface's rim
-    /// ring, bunched on the punctured quad when the quad is larger than a remesh face): every
+    /// ring, bunched on the punctured quad when the quad is larger than [`MERGE_QUAD_FACES`]
+    /// remesh faces): every
     /// start has them, so they do not send [`from_best_start`] to the next one.
     pub slivers_at_rim: usize,
 }
