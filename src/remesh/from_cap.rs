@@ -103,14 +103,19 @@ pub(crate) const RETRY_AREA_SPREAD: f64 = 0.04;
 /// Whether a closed surface's remesh makes the other puncture end worth trying: it misses
 /// [`meets_bar`], or its uniform areas are spread more than [`RETRY_AREA_SPREAD`].
 pub(crate) fn end_worth_retrying(r: &FromCap, uniform: bool) -> bool {
-    !meets_bar(r) || (uniform && r.d_face_relative > RETRY_AREA_SPREAD)
+    !meets_bar(r) || spreads_areas(r, uniform)
+}
+
+/// Whether a uniform remesh's areas are spread more than [`RETRY_AREA_SPREAD`].
+fn spreads_areas(r: &FromCap, uniform: bool) -> bool {
+    uniform && r.d_face_relative > RETRY_AREA_SPREAD
 }
 
 /// The order in which the two puncture ends' remeshes are preferred (lowest first): crossing
 /// faces of their own, slivers, then whether uniform areas are spread more than
 /// [`RETRY_AREA_SPREAD`], then the higher mean smallest angle.
 pub(crate) fn end_rank(r: &FromCap, uniform: bool) -> (usize, usize, bool, f64) {
-    (own_crossings(r), r.shape.uncross.slivers_after, uniform && r.d_face_relative > RETRY_AREA_SPREAD, -r.mean_min_angle_deg)
+    (own_crossings(r), r.shape.uncross.slivers_after, spreads_areas(r, uniform), -r.mean_min_angle_deg)
 }
 
 /// Crossing faces not at the input's own crossings.
