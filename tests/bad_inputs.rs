@@ -11,7 +11,7 @@ use capmesh::io::{
     read_mesh, read_mesh_from_bytes, write_mesh, write_mesh_to_bytes, Format, Location, ReadError,
     WriteError,
 };
-use capmesh::mesh::repair::{default_weld_tolerance, weld_coincident};
+use capmesh::mesh::repair::{default_weld_tolerance, split_pinched_vertices, weld_coincident};
 use capmesh::mesh::shapes::{annulus, grid_disk, icosphere, spherical_cap, torus};
 use capmesh::mesh::validate::require_clean;
 use capmesh::mesh::{inspect, validate, MeshError, SurfaceKind, TriMesh};
@@ -515,6 +515,23 @@ fn two_fans_sharing_a_vertex_on_closed_surfaces() {
     ];
     let err = inspect(&TriMesh::new(vertices, faces)).unwrap_err();
     assert_eq!(err, MeshError::NonManifoldVertex { vertex: 3, fans: 2 });
+}
+
+#[test]
+fn splitting_pinched_vertices_gives_one_vertex_per_fan() {
+    // The bowtie: two triangles touching at vertex 2; the second gets a copy of it.
+    let bowtie = mesh(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 0.5, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]], &[[0, 1, 2], [2, 4, 3]]);
+    let split = split_pinched_vertices(&bowtie).unwrap();
+    assert_eq!(split.copy_of, vec![2]);
+    assert_eq!(split.mesh.faces, vec![[0, 1, 2], [5, 4, 3]]);
+    assert_eq!(split.mesh.vertices[5], split.mesh.vertices[2]);
+    assert_eq!(inspect(&split.mesh).unwrap().n_components, 2);
+    // A manifold mesh comes back as it is; a non-manifold edge is still an error.
+    let sphere = icosphere(1);
+    let same = split_pinched_vertices(&sphere).unwrap();
+    assert!(same.copy_of.is_empty() && same.mesh == sphere);
+    let fin = mesh(&SQUARE, &[[0, 1, 4], [1, 0, 2], [0, 1, 3]]);
+    assert!(matches!(split_pinched_vertices(&fin), Err(MeshError::NonManifoldEdge { .. }) | Err(MeshError::InconsistentOrientation { .. })));
 }
 
 #[test]

@@ -115,7 +115,9 @@ pub enum MeshError {
     /// The faces around a vertex form more than one fan.
     #[error(
         "vertex {vertex} joins {fans} separate fans of faces (the surface touches itself at this \
-         point); repair it in MeshLab with 'Repair non Manifold Vertices'"
+         point); split it, one vertex per fan: `capmesh remesh`, `param` and `check` do, the library \
+         has capmesh::mesh::repair::split_pinched_vertices (MeshLab: 'Split Vertices on Non \
+         Manifold Vertices')"
     )]
     NonManifoldVertex {
         /// Vertex index.

@@ -10,7 +10,8 @@
 use crate::mesh::fasthash::FastMap;
 use crate::mesh::geometry::{cross, dot, norm, sub};
 use crate::mesh::unionfind::UnionFind;
-use crate::mesh::TriMesh;
+use crate::mesh::topology::{check_degenerate, check_duplicates, check_indices, check_not_empty, corner_fans, edge_faces};
+use crate::mesh::{MeshError, TriMesh};
 
 /// `old_to_new` value of a vertex that was removed (unreferenced after the repair).
 pub const REMOVED: u32 = u32::MAX;
@@ -36,6 +37,9 @@ pub struct Welded {
     pub removed_faces: usize,
     /// Number of (merged) vertices dropped because no face uses them.
     pub removed_unreferenced: usize,
+    /// Copies made of pinched vertices, one per fan beyond the first (0 from
+    /// [`weld_coincident`]; the parameterization splits the pinches welding makes).
+    pub split_vertices: usize,
 }
 
 /// `DEFAULT_WELD_REL_TOL` times the bounding-box diagonal (0 for an empty mesh).
@@ -177,6 +181,60 @@ fn representatives(vertices: &[[f64; 3]], tolerance: f64) -> Vec<u32> {
     rep
 }
 
+/// Result of [`split_pinched_vertices`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Split {
+    /// The mesh with one vertex per fan: the input's vertices in their order, then one copy
+    /// per extra fan of a pinched vertex; the faces in their order (those of an extra fan
+    /// use its copy).
+    pub mesh: TriMesh,
+    /// For each appended copy (vertex `n + k` of `mesh`, `n` the input's vertex count), the
+    /// input vertex it copies.
+    pub copy_of: Vec<u32>,
+}
+
+/// Split every pinched vertex (its faces form several fans: the surface touches itself at
+/// that point, as marching cubes leaves where a segmentation's folds meet) into one vertex
+/// per fan, all at the same position: MeshLab's "Split Vertices on Non Manifold Vertices".
+/// The first fan met in face order keeps the vertex. A closed surface pinched at `k`
+/// vertices has Euler characteristic 2 again after the split when it was a sphere touching
+/// itself. Fails as [`Topology::build`](crate::mesh::Topology::build) does on anything else
+/// that is not a manifold (non-manifold edges, inconsistent orientation, ...).
+pub fn split_pinched_vertices(mesh: &TriMesh) -> Result<Split, MeshError> {
+    check_not_empty(mesh)?;
+    check_indices(mesh)?;
+    check_degenerate(mesh)?;
+    check_duplicates(mesh)?;
+    let edges = edge_faces(mesh)?;
+    let mut fans = corner_fans(mesh, &edges);
+    const UNSET: u32 = u32::MAX;
+    let n = mesh.n_vertices();
+    let mut first_fan = vec![UNSET; n];
+    // The copy made for each fan's root corner (`UNSET`: none yet).
+    let mut copy_for_fan = vec![UNSET; 3 * mesh.n_faces()];
+    let mut vertices = mesh.vertices.clone();
+    let mut faces = mesh.faces.clone();
+    let mut copy_of = Vec::new();
+    for (f, face) in faces.iter_mut().enumerate() {
+        for (k, v) in face.iter_mut().enumerate() {
+            let fan = fans.find((3 * f + k) as u32);
+            let first = &mut first_fan[*v as usize];
+            if *first == UNSET {
+                *first = fan;
+            } else if *first != fan {
+                let copy = &mut copy_for_fan[fan as usize];
+                if *copy == UNSET {
+                    *copy = vertices.len() as u32;
+                    vertices.push(vertices[*v as usize]);
+                    copy_of.push(*v);
+                }
+                *v = *copy;
+            }
+        }
+    }
+    Ok(Split { mesh: TriMesh::new(vertices, faces), copy_of })
+}
+
 /// Apply a vertex-to-representative map: remap faces (dropping degenerate ones if asked, and
 /// always those with out-of-range indices), then drop unreferenced vertices.
 fn compact(mesh: &TriMesh, rep: &[u32], drop_degenerate: bool) -> Welded {
@@ -230,5 +288,6 @@ fn compact(mesh: &TriMesh, rep: &[u32], drop_degenerate: bool) -> Welded {
         merged_vertices,
         removed_faces,
         removed_unreferenced,
+        split_vertices: 0,
     }
 }

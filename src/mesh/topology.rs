@@ -319,9 +319,10 @@ fn corner_of(faces: &[[u32; 3]], f: u32, v: u32) -> u32 {
     3 * f + k as u32
 }
 
-/// [`MeshError::NonManifoldVertex`] for the smallest vertex whose face corners form more than
-/// one fan (corners are joined across the interior edges at that vertex).
-fn check_vertex_fans(mesh: &TriMesh, edges: &[Edge]) -> Result<(), MeshError> {
+/// The face corners of `mesh` joined into fans: two corners at the same vertex are in one
+/// set when a path of faces around the vertex, across interior edges, joins them. A vertex
+/// whose corners form more than one set is pinched (the surface touches itself there).
+pub(crate) fn corner_fans(mesh: &TriMesh, edges: &[Edge]) -> UnionFind {
     let faces = &mesh.faces;
     let mut corners = UnionFind::new(3 * faces.len());
     for e in edges {
@@ -331,6 +332,14 @@ fn check_vertex_fans(mesh: &TriMesh, edges: &[Edge]) -> Result<(), MeshError> {
             }
         }
     }
+    corners
+}
+
+/// [`MeshError::NonManifoldVertex`] for the smallest vertex whose face corners form more than
+/// one fan ([`corner_fans`]).
+fn check_vertex_fans(mesh: &TriMesh, edges: &[Edge]) -> Result<(), MeshError> {
+    let faces = &mesh.faces;
+    let mut corners = corner_fans(mesh, edges);
     const UNSET: u32 = u32::MAX;
     let mut first_root = vec![UNSET; mesh.n_vertices()];
     let mut bad: Option<u32> = None;

@@ -35,7 +35,7 @@ pub(crate) fn prepare(mesh: &TriMesh, options: &ParamOptions) -> Result<Prepared
     let input_topology = checked_topology(mesh)?;
     let input_closed = classify(&input_topology) == Some(SurfaceKind::ClosedSphere);
     let diag = mesh.bounding_box_diagonal();
-    let welded = repair::weld_coincident(mesh, options.weld_tolerance * diag);
+    let welded = split_pinches(mesh, repair::weld_coincident(mesh, options.weld_tolerance * diag))?;
     let work = &welded.mesh;
     // Nothing welded or dropped: the input's topology is the welded mesh's.
     let (kind, topology) = if work.vertices.len() == mesh.vertices.len() && work.faces == mesh.faces {
@@ -44,4 +44,31 @@ pub(crate) fn prepare(mesh: &TriMesh, options: &ParamOptions) -> Result<Prepared
         validate(work)?
     };
     Ok(Prepared { start, welded, kind, topology, input_closed })
+}
+
+/// `welded` with the pinched vertices that welding made (coincident vertices of two sheets
+/// that touch at a point, or the copies [`repair::split_pinched_vertices`] made of a pinched
+/// input) split again, one vertex per fan. `input` is manifold, so each of its vertices has
+/// its faces in one fan of the welded vertex: the input vertex goes to that fan's vertex.
+fn split_pinches(input: &TriMesh, welded: Welded) -> Result<Welded, Error> {
+    let unchanged = welded.mesh.vertices.len() == input.vertices.len() && welded.mesh.faces == input.faces;
+    if unchanged || !matches!(validate(&welded.mesh), Err(crate::mesh::MeshError::NonManifoldVertex { .. })) {
+        return Ok(welded);
+    }
+    let split = repair::split_pinched_vertices(&welded.mesh)?;
+    let mut old_to_new = welded.old_to_new.clone();
+    // Welding keeps the order of the faces it does not drop, and the split keeps every face.
+    let mut kept = split.mesh.faces.iter();
+    for face in &input.faces {
+        let mapped = face.map(|v| welded.old_to_new.get(v as usize).copied().unwrap_or(repair::REMOVED));
+        let [a, b, c] = mapped;
+        if mapped.contains(&repair::REMOVED) || a == b || b == c || a == c {
+            continue;
+        }
+        let Some(new) = kept.next() else { break };
+        for (&v, &w) in face.iter().zip(new) {
+            old_to_new[v as usize] = w;
+        }
+    }
+    Ok(Welded { mesh: split.mesh, old_to_new, split_vertices: welded.split_vertices + split.copy_of.len(), ..welded })
 }

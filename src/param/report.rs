@@ -96,6 +96,9 @@ pub struct ParamReport {
     pub n_faces: usize,
     /// Vertices merged with a coincident one before mapping.
     pub welded_vertices: usize,
+    /// Copies made of vertices where welding left the surface touching itself, one per fan
+    /// beyond the first ([`crate::mesh::repair::split_pinched_vertices`]).
+    pub split_vertices: usize,
     /// Optimal (or fixed) disk radius; `None` for the planar disk.
     pub r_star: Option<f64>,
     /// Cap bound `Z*`; `None` for the planar disk.

@@ -17,7 +17,8 @@ use crate::error::Error;
 use crate::cap::{stereographic, CapMap, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
 use crate::mesh::geometry::triangle_area;
-use crate::mesh::{SurfaceKind, TriMesh};
+use crate::mesh::repair::split_pinched_vertices;
+use crate::mesh::{MeshError, SurfaceKind, TriMesh};
 use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
 use rayon::prelude::*;
@@ -193,6 +194,9 @@ pub struct RemeshReport {
     pub equalize_seconds: f64,
     /// Seconds spent measuring the result ([`RemeshReport::quality`]).
     pub metrics_seconds: f64,
+    /// Copies made of pinched input vertices, one per fan beyond the first
+    /// ([`split_pinched_vertices`]; 0 for a manifold input).
+    pub split_vertices: usize,
 }
 
 /// The planar positions of those `vertices` that lie on the rim (an open surface's boundary,
@@ -281,7 +285,24 @@ fn other_end(map: &CapMap) -> Option<PunctureEnd> {
 /// ([`from_cap::end_rank`]). The
 /// two ends' search maps often tie, and the finished maps then differ near the puncture
 /// (docs/method.md section 18, "Finely triangulated inputs").
+///
+/// An input pinched at some vertices (the surface touches itself there) is remeshed as the
+/// mesh with those vertices split, one per fan ([`split_pinched_vertices`]): the same faces in
+/// the same order, so surface points name the input's faces.
 fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
+    match remesh_manifold(mesh, options, progress, locate) {
+        Err(Error::Mesh(MeshError::NonManifoldVertex { .. })) => {
+            let split = split_pinched_vertices(mesh)?;
+            let (out, mut report, points) = remesh_manifold(&split.mesh, options, progress, locate)?;
+            report.split_vertices = split.copy_of.len();
+            Ok((out, report, points))
+        }
+        other => other,
+    }
+}
+
+/// [`remesh_here`] on a mesh without pinched vertices.
+fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let start = Instant::now();
     // Refused before the parameterization, which would be wasted.
     let asked = options.grid.approximate_faces();
@@ -337,6 +358,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
         shape_seconds,
         equalize_seconds,
         metrics_seconds,
+        split_vertices: 0,
     };
     Ok((out, report, points))
 }

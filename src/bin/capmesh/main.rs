@@ -346,10 +346,21 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Check { input, json } => {
+            // Pinched vertices are split as `param` and `remesh` split them.
             let m = read(&input)?;
+            let (m, split_vertices) = match mesh::repair::split_pinched_vertices(&m) {
+                Ok(split) if !split.copy_of.is_empty() => (split.mesh, split.copy_of.len()),
+                _ => (m, 0),
+            };
             let summary = mesh::inspect(&m).map_err(|e| format!("{}: {e}", input.display()))?;
             if json {
-                outln!("{}", serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?);
+                #[derive(serde::Serialize)]
+                struct Checked<'a> {
+                    #[serde(flatten)]
+                    summary: &'a mesh::MeshSummary,
+                    split_vertices: usize,
+                }
+                outln!("{}", serde_json::to_string_pretty(&Checked { summary: &summary, split_vertices }).map_err(|e| e.to_string())?);
             } else {
                 outln!("file                 {}", input.display());
                 outln!("vertices             {}", summary.n_vertices);
@@ -363,6 +374,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 }
                 outln!("zero-area faces      {}", summary.zero_area_faces);
                 outln!("coincident vertices  {}", summary.coincident_vertex_pairs);
+                if split_vertices > 0 {
+                    outln!("pinched vertices     split, {split_vertices} copies (the surface touches itself there; param and remesh split them too)");
+                }
             }
             // The full validation names why the surface cannot be mapped.
             mesh::validate(&m).map_err(|e| format!("{}: {e}", input.display()))?;

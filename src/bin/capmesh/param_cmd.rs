@@ -30,7 +30,7 @@ pub fn run(args: ParamArgs) -> Result<(), Failure> {
         refuse_overwrite(&input, p)?;
     }
     outputs::refuse_duplicates(&[&[output.as_path()][..], &extra].concat())?;
-    let m = read(&input)?;
+    let m = split_pinches(&input, read(&input)?);
     let bar = cli_progress::Bar::new(quiet);
     let mut options = ParamOptions::default().with_domain(domain);
     map.apply(&mut options);
@@ -62,4 +62,23 @@ pub fn run(args: ParamArgs) -> Result<(), Failure> {
         figures_arg::done(capmesh::figures::param_figures(&dir, &figures_arg::name(&input), &m, &cap, &Default::default()))?;
     }
     refuse_poor(&input, r, map.allow_poor_map)
+}
+
+/// The input with its pinched vertices split, one per fan (the outputs then have the input's
+/// vertices in their order and the copies after them), said on standard output; the input
+/// itself when it has none, or when it is not a surface (the parameterization names why).
+pub(crate) fn split_pinches(input: &Path, m: capmesh::TriMesh) -> capmesh::TriMesh {
+    match capmesh::mesh::repair::split_pinched_vertices(&m) {
+        Ok(split) if !split.copy_of.is_empty() => {
+            let _ = crate::write_line(format_args!("{}", pinch_note(input, split.copy_of.len())));
+            split.mesh
+        }
+        _ => m,
+    }
+}
+
+/// What the commands say when they split pinched vertices.
+pub(crate) fn pinch_note(input: &Path, copies: usize) -> String {
+    let copies = if copies == 1 { "1 copy".to_string() } else { format!("{copies} copies") };
+    format!("{}: the surface touches itself at some vertices: split them, one vertex per fan of faces ({copies} appended)", input.display())
 }

@@ -46,6 +46,7 @@ struct Flat<'a> {
     equalize_seconds: f64,
     metrics_seconds: f64,
     write_seconds: f64,
+    split_vertices: usize,
     quality: capmesh::MapQuality,
     optimize: capmesh::remesh::Optimize,
     shape: capmesh::remesh::shape::ShapeReport,
@@ -106,6 +107,9 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     }
     let write_seconds = t_write.elapsed().as_secs_f64();
     outln!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
+    if rep.split_vertices > 0 {
+        outln!("{}", crate::param_cmd::pinch_note(&input, rep.split_vertices));
+    }
     warn_if_poor(&input, &rep.param);
     if rep.quality.zero_area_faces > 0 {
         eprintln!(
@@ -129,6 +133,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
                 equalize_seconds: rep.equalize_seconds,
                 metrics_seconds: rep.metrics_seconds,
                 write_seconds,
+                split_vertices: rep.split_vertices,
                 quality: rep.param.quality,
                 optimize: rep.optimize,
                 shape: rep.shape,

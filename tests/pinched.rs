@@ -1,0 +1,102 @@
+//! Surfaces that touch themselves at a vertex (pinched: the vertex's faces form several
+//! fans), as marching cubes leaves where a segmentation's folds meet: `remesh` and the
+//! parameterization split such vertices, one per fan, instead of refusing the input.
+
+use capmesh::io::read_mesh;
+use capmesh::mesh::repair::split_pinched_vertices;
+use capmesh::mesh::{validate, MeshError, SurfaceKind, TriMesh};
+use capmesh::param::{parameterize, ParamOptions};
+use capmesh::progress::NoProgress;
+use capmesh::remesh::{remesh, CapGrid, RemeshOptions};
+
+mod common;
+
+/// The vertices within `rings` edges of `a`.
+fn near(faces: &[[u32; 3]], n: usize, a: usize, rings: usize) -> Vec<bool> {
+    let mut within = vec![false; n];
+    within[a] = true;
+    for _ in 0..rings {
+        let grown: Vec<u32> = faces.iter().filter(|f| f.iter().any(|&v| within[v as usize])).flatten().copied().collect();
+        for v in grown {
+            within[v as usize] = true;
+        }
+    }
+    within
+}
+
+/// The bundled closed hippocampus pinched: the closest pair of vertices more than 8 edges
+/// apart on the surface (the two sides of a thin part) moved to their midpoint and made one
+/// vertex. The other index is left unreferenced.
+fn pinched_hippocampus() -> TriMesh {
+    let mut m = read_mesh(&common::data("closed_hippocampus_choi.obj")).unwrap();
+    let n = m.vertices.len();
+    let d = |a: usize, b: usize| (0..3).map(|k| (m.vertices[a][k] - m.vertices[b][k]).powi(2)).sum::<f64>();
+    // Candidates: every 25th vertex, against all vertices outside its 8 rings.
+    let mut best = (f64::INFINITY, 0, 0);
+    for a in (0..n).step_by(25) {
+        let within = near(&m.faces, n, a, 8);
+        for b in (0..n).filter(|&b| !within[b]) {
+            if d(a, b) < best.0 {
+                best = (d(a, b), a, b);
+            }
+        }
+    }
+    let (_, a, b) = best;
+    let mid = std::array::from_fn(|k| 0.5 * (m.vertices[a][k] + m.vertices[b][k]));
+    m.vertices[a] = mid;
+    m.vertices[b] = mid;
+    for f in &mut m.faces {
+        for v in f.iter_mut() {
+            if *v == b as u32 {
+                *v = a as u32;
+            }
+        }
+    }
+    m
+}
+
+#[test]
+fn a_pinched_closed_surface_is_split_and_remeshed() {
+    let m = pinched_hippocampus();
+    assert!(matches!(validate(&m), Err(MeshError::NonManifoldVertex { fans: 2, .. })), "the test mesh must be pinched");
+    let (out, rep) = remesh(&m, &RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 }), &NoProgress).unwrap();
+    assert_eq!(rep.split_vertices, 1);
+    let (kind, _) = validate(&out).unwrap();
+    assert_eq!(kind, SurfaceKind::ClosedSphere);
+    let q = &rep.quality;
+    eprintln!("pinched hippocampus: d_face_rel {:.4}, min angle {:.2}, mean min angle {:.2}", q.d_face_relative, q.min_angle_deg, q.mean_min_angle_deg);
+    assert!(q.d_face_relative <= 0.035 && q.min_angle_deg >= 15.0 && q.mean_min_angle_deg >= 48.0, "{q:?}");
+}
+
+#[test]
+fn a_pinch_made_by_welding_is_split_again() {
+    // The split mesh has the copy at the same point: welding merges it back, and the
+    // parameterization splits that pinch again.
+    let split = split_pinched_vertices(&pinched_hippocampus()).unwrap();
+    assert_eq!(split.copy_of.len(), 1);
+    assert_eq!(split.mesh.vertices[split.copy_of[0] as usize], *split.mesh.vertices.last().unwrap());
+    let map = parameterize(&split.mesh, &ParamOptions::default(), &NoProgress).unwrap();
+    // Welded: the copy and the unreferenced vertex left at the same point.
+    assert_eq!((map.report.welded_vertices, map.report.split_vertices), (2, 1));
+    assert!(map.report.area_distortion.mean_abs < 0.05, "{}", map.report.area_distortion.mean_abs);
+    // The copy keeps its own point of the map: the faces of both fans stay unfolded.
+    assert_eq!(map.report.flipped_faces, 0);
+    let c = split.mesh.vertices.len() - 1;
+    assert_ne!(map.plane[c], map.plane[split.copy_of[0] as usize]);
+}
+
+#[test]
+fn the_command_line_splits_a_pinched_input() {
+    let dir = common::TempDir::new("pinched");
+    let input = dir.path("pinched.obj");
+    capmesh::io::write_mesh(&input, &pinched_hippocampus()).unwrap();
+    let check = common::cli::capmesh().arg("check").arg(&input).output().unwrap();
+    let text = String::from_utf8_lossy(&check.stdout);
+    assert!(check.status.success() && text.contains("pinched vertices     split, 1 copies") && text.contains("closed genus-0"), "{text}");
+    let report = dir.path("r.json");
+    let run = common::cli::capmesh().args(["remesh", "--faces", "2000", "-o"]).arg(dir.path("out.ply")).arg("--report").arg(&report).arg(&input).output().unwrap();
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success() && text.contains("touches itself") && text.contains("(1 copy appended)"), "{text}{}", String::from_utf8_lossy(&run.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["split_vertices"], 1);
+}
