@@ -10,4 +10,4 @@ pub(crate) mod sparse;
 pub use conjugate_gradient::{jacobi_cg2, CgOutcome};
 pub use graph_matrix::GraphPattern;
 pub use laplacian::{cotangent_weights, CotanWeights};
-pub use sparse::{LuSolver, SolveError, SpdSolver, TripletList};
+pub use sparse::{release_spare, LuSolver, SolveError, SpdSolver, TripletList};

@@ -215,6 +215,7 @@ impl SpdSolver {
         let sym = &self.symbolic.as_deref().ok_or(SolveError::Singular { what })?.2;
         // No clearing: the supernodal factorization (forced in `analyze`) zeroes its values
         // itself, and clearing them first wrote the hand's 21 MB factor twice.
+        take_spare(&mut self.values, sym.len_val());
         self.values.resize(sym.len_val(), 0.0);
         let mut buf = MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())).map_err(|e| backend(&e))?;
         sym.factorize_numeric_llt(&mut self.values, a.as_ref(), Side::Lower, Default::default(), Par::Seq, MemStack::new(&mut buf), Default::default())
@@ -288,6 +289,59 @@ impl SpdSolver {
             .map_err(|e| SolveError::Backend { what, message: format!("{e:?}") })?;
         LltRef::new(sym, &self.values).solve_in_place_with_conj(Conj::No, m.as_mut(), Par::Seq, MemStack::new(&mut buf));
         copy_back(&m, rhs, what)
+    }
+}
+
+impl Drop for SpdSolver {
+    fn drop(&mut self) {
+        offer_spare(&mut self.values);
+    }
+}
+
+/// Factor entries from which a factorization's value buffer is kept for the next one when its
+/// solver is dropped ([`release_spare`]).
+const SPARE_ENTRIES: usize = 1 << 24;
+
+/// The value buffer of the largest factorization whose solver was dropped (see
+/// [`take_spare`]).
+static SPARE: std::sync::Mutex<Vec<f64>> = std::sync::Mutex::new(Vec::new());
+
+/// Give `values` a capacity of at least `need` entries: the spare buffer when it is large
+/// enough, else a new one with a quarter more room for the next pattern's fill (capacity that
+/// is never written costs no memory). Writing a large factor's buffer for the first time can
+/// cost more than the factorization on a virtual machine (every fresh page faults through to
+/// the host; see docs/method.md, "Large meshes"), and the pipeline factors such systems one
+/// after another (the flattening's, then the transport's).
+fn take_spare(values: &mut Vec<f64>, need: usize) {
+    if values.capacity() >= need || need < SPARE_ENTRIES {
+        return;
+    }
+    if let Ok(mut spare) = SPARE.lock() {
+        if spare.capacity() >= need {
+            *values = std::mem::take(&mut *spare);
+            return;
+        }
+    }
+    *values = Vec::with_capacity(need + need / 4);
+}
+
+/// Keep `values` as the spare buffer when it is large and larger than the spare.
+fn offer_spare(values: &mut Vec<f64>) {
+    if values.capacity() < SPARE_ENTRIES {
+        return;
+    }
+    if let Ok(mut spare) = SPARE.lock() {
+        if spare.capacity() < values.capacity() {
+            *spare = std::mem::take(values);
+        }
+    }
+}
+
+/// Free the spare factor buffer (the parameterization calls this when its last large
+/// factorization is done, so that later stages do not carry it).
+pub fn release_spare() {
+    if let Ok(mut spare) = SPARE.lock() {
+        *spare = Vec::new();
     }
 }
 
@@ -379,6 +433,29 @@ impl LuSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_large_factor_buffer_is_handed_to_the_next_factorization() {
+        // Capacity only: no page of these buffers is written.
+        let mut dropped: Vec<f64> = Vec::with_capacity(SPARE_ENTRIES + 100);
+        let address = dropped.as_ptr();
+        offer_spare(&mut dropped);
+        assert_eq!(dropped.capacity(), 0, "the buffer went to the spare");
+        let mut next = Vec::new();
+        take_spare(&mut next, SPARE_ENTRIES + 50);
+        assert_eq!(next.as_ptr(), address, "the next large factorization takes it");
+        // Too large for the spare: a new buffer with a quarter more room.
+        offer_spare(&mut next);
+        let mut larger = Vec::new();
+        take_spare(&mut larger, SPARE_ENTRIES + 200);
+        assert!(larger.capacity() >= (SPARE_ENTRIES + 200) * 5 / 4 && larger.as_ptr() != address);
+        release_spare();
+        assert_eq!(SPARE.lock().unwrap().capacity(), 0);
+        // Small systems neither take nor leave one.
+        let mut small = vec![0.0; 10];
+        offer_spare(&mut small);
+        assert_eq!(small.len(), 10);
+    }
 
     #[test]
     fn assembly_sums_duplicates_like_a_dense_accumulation() {

@@ -52,7 +52,11 @@ use std::time::Instant;
 /// The work runs on a worker thread of rayon's pool; `progress` is called on this thread
 /// (see `crate::pool`).
 pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
-    crate::pool::on_pool(progress, |progress| parameterize_with_fallbacks(mesh, options, progress))
+    crate::pool::on_pool(progress, |progress| {
+        let map = parameterize_with_fallbacks(mesh, options, progress);
+        crate::linalg::release_spare();
+        map
+    })
 }
 
 /// [`parameterize`] on the current thread.
