@@ -14,8 +14,9 @@ anatomy through a triangulation it was never developed on:
 - `mc` (closed meshes): a voxel segmentation of the inside (voxel MC_VOXEL of the longest side, inside by
   gpytoolbox's signed distance, a 3-tap blur along each axis) turned into a surface by scikit-image's
   marching cubes (Lewiner), the largest component kept: the terraced triangulation of a CT/MRI
-  segmentation. capmesh refuses a copy that touches itself (a pinched vertex, as a folded cortex
-  segmented this coarsely does): the row then gives its error.
+  segmentation. A folded cortex segmented this coarsely comes back with handles (sulci closed
+  into tunnels) and holes: capmesh refuses such a copy (it maps genus-0 surfaces), and the row
+  gives its error.
 Then `capmesh remesh --faces N` runs on each copy (N = 5000 and 10000 by default), and the table gives the figures of the
 issue's bars, each marked where it misses: d_face_rel <= 0.035 (0.08 on the hand and the bird
 skull), mean smallest angle >= 48 degrees, <= 2% of faces below 30 degrees, smallest angle

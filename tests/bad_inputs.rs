@@ -11,7 +11,7 @@ use capmesh::io::{
     read_mesh, read_mesh_from_bytes, write_mesh, write_mesh_to_bytes, Format, Location, ReadError,
     WriteError,
 };
-use capmesh::mesh::repair::{default_weld_tolerance, split_pinched_vertices, weld_coincident};
+use capmesh::mesh::repair::{default_weld_tolerance, keep_main_component, split_pinched_vertices, weld_coincident};
 use capmesh::mesh::shapes::{annulus, grid_disk, icosphere, spherical_cap, torus};
 use capmesh::mesh::validate::require_clean;
 use capmesh::mesh::{inspect, validate, MeshError, SurfaceKind, TriMesh};
@@ -552,6 +552,13 @@ fn two_components() {
         validate(&m).unwrap_err(),
         MeshError::SeveralComponents { count: 2 }
     );
+    // Of two equal pieces the one met first is kept, with half the area dropped.
+    let main = keep_main_component(&m).unwrap();
+    assert_eq!(main.mesh, a);
+    assert_eq!(main.faces, (0..a.n_faces() as u32).collect::<Vec<_>>());
+    assert_eq!(main.dropped_components, 1);
+    assert!((main.dropped_area_share - 0.5).abs() < 1e-12);
+    assert!(keep_main_component(&a).is_none());
 }
 
 #[test]

@@ -235,6 +235,61 @@ pub fn split_pinched_vertices(mesh: &TriMesh) -> Result<Split, MeshError> {
     Ok(Split { mesh: TriMesh::new(vertices, faces), copy_of })
 }
 
+/// Result of [`keep_main_component`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct MainComponent {
+    /// The piece of largest area: its vertices and faces, each in the input's order (the
+    /// other pieces' vertices dropped).
+    pub mesh: TriMesh,
+    /// The input face of each kept face.
+    pub faces: Vec<u32>,
+    /// Pieces dropped.
+    pub dropped_components: usize,
+    /// Their share of the input's area.
+    pub dropped_area_share: f64,
+}
+
+/// The piece of largest area of a mesh made of several (faces joined through shared
+/// vertices), as MeshLab's "Remove Isolated pieces" keeps it; `None` when the mesh is one
+/// piece. Faces with out-of-range indices belong to no piece (validation reports them).
+pub fn keep_main_component(mesh: &TriMesh) -> Option<MainComponent> {
+    let n = mesh.n_vertices();
+    let valid = |f: &[u32; 3]| f.iter().all(|&v| (v as usize) < n);
+    let mut sets = UnionFind::new(n);
+    for f in mesh.faces.iter().filter(|f| valid(f)) {
+        sets.union(f[0], f[1]);
+        sets.union(f[1], f[2]);
+    }
+    let mut area: FastMap<u32, f64> = FastMap::default();
+    let mut root_of = Vec::with_capacity(mesh.n_faces());
+    for f in &mesh.faces {
+        let root = valid(f).then(|| sets.find(f[0]));
+        if let Some(r) = root {
+            let [a, b, c] = f.map(|v| mesh.vertices[v as usize]);
+            *area.entry(r).or_insert(0.0) += 0.5 * norm(cross(sub(b, a), sub(c, a)));
+        }
+        root_of.push(root);
+    }
+    if area.len() < 2 {
+        return None;
+    }
+    let total: f64 = area.values().sum();
+    // The largest area; ties to the piece met first in face order.
+    let order: Vec<u32> = root_of.iter().flatten().copied().collect();
+    let main = order.iter().copied().fold(None, |best: Option<u32>, r| match best {
+        Some(b) if area[&b] >= area[&r] => Some(b),
+        _ => Some(r),
+    })?;
+    let faces: Vec<u32> = (0..mesh.n_faces() as u32).filter(|&t| root_of[t as usize] == Some(main)).collect();
+    let kept = faces.iter().map(|&t| mesh.faces[t as usize]).collect();
+    Some(MainComponent {
+        mesh: remove_unreferenced(&TriMesh::new(mesh.vertices.clone(), kept)).mesh,
+        faces,
+        dropped_components: area.len() - 1,
+        dropped_area_share: if total > 0.0 { 1.0 - area[&main] / total } else { 0.0 },
+    })
+}
+
 /// Apply a vertex-to-representative map: remap faces (dropping degenerate ones if asked, and
 /// always those with out-of-range indices), then drop unreferenced vertices.
 fn compact(mesh: &TriMesh, rep: &[u32], drop_degenerate: bool) -> Welded {

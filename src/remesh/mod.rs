@@ -17,7 +17,7 @@ use crate::error::Error;
 use crate::cap::{stereographic, CapMap, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
 use crate::mesh::geometry::triangle_area;
-use crate::mesh::repair::split_pinched_vertices;
+use crate::mesh::repair::{keep_main_component, split_pinched_vertices, MainComponent};
 use crate::mesh::{MeshError, SurfaceKind, TriMesh};
 use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
@@ -197,6 +197,11 @@ pub struct RemeshReport {
     /// Copies made of pinched input vertices, one per fan beyond the first
     /// ([`split_pinched_vertices`]; 0 for a manifold input).
     pub split_vertices: usize,
+    /// Pieces of the input dropped besides the largest (at most [`DROPPED_AREA_SHARE`] of
+    /// the area, [`keep_main_component`]); the metrics are against the piece kept.
+    pub dropped_components: usize,
+    /// The dropped pieces' share of the input's area.
+    pub dropped_area_share: f64,
 }
 
 /// The planar positions of those `vertices` that lie on the rim (an open surface's boundary,
@@ -286,22 +291,51 @@ fn other_end(map: &CapMap) -> Option<PunctureEnd> {
 /// two ends' search maps often tie, and the finished maps then differ near the puncture
 /// (docs/method.md section 18, "Finely triangulated inputs").
 ///
-/// An input pinched at some vertices (the surface touches itself there) is remeshed as the
-/// mesh with those vertices split, one per fan ([`split_pinched_vertices`]): the same faces in
-/// the same order, so surface points name the input's faces.
+/// Two repairs are made when the input needs them, each reported: a vertex where the surface
+/// touches itself is split, one per fan ([`split_pinched_vertices`]; the faces keep their
+/// order), and of several pieces the largest is remeshed when the others hold at most
+/// [`DROPPED_AREA_SHARE`] of the area ([`keep_main_component`]: marching cubes leaves such
+/// specks). Surface points name the input's faces either way.
 fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
-    match remesh_manifold(mesh, options, progress, locate) {
-        Err(Error::Mesh(MeshError::NonManifoldVertex { .. })) => {
-            let split = split_pinched_vertices(mesh)?;
-            let (out, mut report, points) = remesh_manifold(&split.mesh, options, progress, locate)?;
-            report.split_vertices = split.copy_of.len();
-            Ok((out, report, points))
+    let mut work = std::borrow::Cow::Borrowed(mesh);
+    let (mut split, mut kept): (Option<usize>, Option<MainComponent>) = (None, None);
+    loop {
+        match remesh_manifold(&work, options, progress, locate) {
+            Err(Error::Mesh(MeshError::NonManifoldVertex { .. })) if split.is_none() => {
+                let s = split_pinched_vertices(&work)?;
+                split = Some(s.copy_of.len());
+                work = std::borrow::Cow::Owned(s.mesh);
+            }
+            Err(Error::Mesh(e @ MeshError::SeveralComponents { .. })) if kept.is_none() => {
+                match keep_main_component(&work) {
+                    Some(main) if main.dropped_area_share <= DROPPED_AREA_SHARE => {
+                        work = std::borrow::Cow::Owned(main.mesh.clone());
+                        kept = Some(main);
+                    }
+                    _ => return Err(Error::Mesh(e)),
+                }
+            }
+            Ok((out, mut report, mut points)) => {
+                report.split_vertices = split.unwrap_or(0);
+                if let Some(main) = &kept {
+                    report.dropped_components = main.dropped_components;
+                    report.dropped_area_share = main.dropped_area_share;
+                    for p in &mut points {
+                        p.face = main.faces[p.face] as usize;
+                    }
+                }
+                return Ok((out, report, points));
+            }
+            Err(e) => return Err(e),
         }
-        other => other,
     }
 }
 
-/// [`remesh_here`] on a mesh without pinched vertices.
+/// Largest share of the input's area in pieces besides the largest that `remesh` drops
+/// (specks of a segmentation); above it several pieces are an error.
+pub const DROPPED_AREA_SHARE: f64 = 0.01;
+
+/// [`remesh_here`] on one piece without pinched vertices.
 fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let start = Instant::now();
     // Refused before the parameterization, which would be wasted.
@@ -359,6 +393,8 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
         equalize_seconds,
         metrics_seconds,
         split_vertices: 0,
+        dropped_components: 0,
+        dropped_area_share: 0.0,
     };
     Ok((out, report, points))
 }

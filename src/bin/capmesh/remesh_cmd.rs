@@ -47,6 +47,8 @@ struct Flat<'a> {
     metrics_seconds: f64,
     write_seconds: f64,
     split_vertices: usize,
+    dropped_components: usize,
+    dropped_area_share: f64,
     quality: capmesh::MapQuality,
     optimize: capmesh::remesh::Optimize,
     shape: capmesh::remesh::shape::ShapeReport,
@@ -107,6 +109,15 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     }
     let write_seconds = t_write.elapsed().as_secs_f64();
     outln!("{}: remeshed onto Z* = {:.4} in {:.2} s", input.display(), rep.param.z_star.unwrap_or(f64::NAN), rep.seconds);
+    if rep.dropped_components > 0 {
+        outln!(
+            "{}: remeshed the largest piece; dropped {} other piece{} ({:.3}% of the area)",
+            input.display(),
+            rep.dropped_components,
+            if rep.dropped_components == 1 { "" } else { "s" },
+            100.0 * rep.dropped_area_share
+        );
+    }
     if rep.split_vertices > 0 {
         outln!("{}", crate::param_cmd::pinch_note(&input, rep.split_vertices));
     }
@@ -134,6 +145,8 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
                 metrics_seconds: rep.metrics_seconds,
                 write_seconds,
                 split_vertices: rep.split_vertices,
+                dropped_components: rep.dropped_components,
+                dropped_area_share: rep.dropped_area_share,
                 quality: rep.param.quality,
                 optimize: rep.optimize,
                 shape: rep.shape,

@@ -1,6 +1,7 @@
-//! Surfaces that touch themselves at a vertex (pinched: the vertex's faces form several
-//! fans), as marching cubes leaves where a segmentation's folds meet: `remesh` and the
-//! parameterization split such vertices, one per fan, instead of refusing the input.
+//! The repairs `remesh` makes instead of refusing an input, as marching cubes leaves them:
+//! surfaces that touch themselves at a vertex (pinched: the vertex's faces form several fans)
+//! have such vertices split, one per fan (the parameterization splits those welding makes);
+//! a surface with specks beside it is remeshed without them.
 
 use capmesh::io::read_mesh;
 use capmesh::mesh::repair::split_pinched_vertices;
@@ -87,7 +88,7 @@ fn a_pinch_made_by_welding_is_split_again() {
 
 #[test]
 fn the_command_line_splits_a_pinched_input() {
-    let dir = common::TempDir::new("pinched");
+    let dir = common::TempDir::new("repairs");
     let input = dir.path("pinched.obj");
     capmesh::io::write_mesh(&input, &pinched_hippocampus()).unwrap();
     let check = common::cli::capmesh().arg("check").arg(&input).output().unwrap();
@@ -99,4 +100,46 @@ fn the_command_line_splits_a_pinched_input() {
     assert!(run.status.success() && text.contains("touches itself") && text.contains("(1 copy appended)"), "{text}{}", String::from_utf8_lossy(&run.stderr));
     let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(json["split_vertices"], 1);
+}
+
+/// The bundled bunny with `piece` added as a separate piece (its vertices after the bunny's).
+fn bunny_with(piece: &TriMesh) -> (TriMesh, usize) {
+    let mut m = read_mesh(&common::data("closed_bunny_npm.obj")).unwrap();
+    let (offset, faces) = (m.vertices.len() as u32, m.faces.len());
+    m.vertices.extend(piece.vertices.iter().copied());
+    m.faces.extend(piece.faces.iter().map(|f| f.map(|v| v + offset)));
+    (m, faces)
+}
+
+/// A speck: an icosphere of `radius` at `centre`.
+fn speck(radius: f64, centre: [f64; 3]) -> TriMesh {
+    let s = capmesh::mesh::shapes::icosphere(1);
+    TriMesh::new(s.vertices.iter().map(|p| std::array::from_fn(|k| centre[k] + radius * p[k])).collect(), s.faces)
+}
+
+#[test]
+fn specks_beside_a_surface_are_dropped_and_reported() {
+    let bunny = read_mesh(&common::data("closed_bunny_npm.obj")).unwrap();
+    let diagonal = bunny.bounding_box_diagonal();
+    let (m, bunny_faces) = bunny_with(&speck(0.01 * diagonal, [0.0, 0.0, 0.0]));
+    assert!(matches!(validate(&m), Err(MeshError::SeveralComponents { count: 2 })));
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 3000 });
+    let (out, rep, points) = capmesh::remesh::remesh_located(&m, &options, &NoProgress).unwrap();
+    assert_eq!(rep.dropped_components, 1);
+    assert!(rep.dropped_area_share > 0.0 && rep.dropped_area_share <= capmesh::remesh::DROPPED_AREA_SHARE, "{}", rep.dropped_area_share);
+    assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
+    // Surface points name the input's faces: all on the bunny's.
+    assert!(points.iter().all(|p| p.face < bunny_faces));
+    // The same remesh as the bunny alone (the speck's vertices only left unreferenced).
+    let (alone, _) = remesh(&bunny, &options, &NoProgress).unwrap();
+    assert_eq!(out, alone);
+}
+
+#[test]
+fn a_second_surface_of_its_own_size_is_still_an_error() {
+    let bunny = read_mesh(&common::data("closed_bunny_npm.obj")).unwrap();
+    let diagonal = bunny.bounding_box_diagonal();
+    let (m, _) = bunny_with(&speck(0.2 * diagonal, [2.0 * diagonal, 0.0, 0.0]));
+    let err = remesh(&m, &RemeshOptions::default(), &NoProgress).unwrap_err();
+    assert!(err.to_string().contains("2 connected components"), "{err}");
 }
