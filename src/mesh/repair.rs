@@ -275,8 +275,7 @@ pub fn keep_main_component(mesh: &TriMesh) -> Option<MainComponent> {
     }
     let total: f64 = area.values().sum();
     // The largest area; ties to the piece met first in face order.
-    let order: Vec<u32> = root_of.iter().flatten().copied().collect();
-    let main = order.iter().copied().fold(None, |best: Option<u32>, r| match best {
+    let main = root_of.iter().flatten().copied().fold(None, |best: Option<u32>, r| match best {
         Some(b) if area[&b] >= area[&r] => Some(b),
         _ => Some(r),
     })?;
