@@ -2,6 +2,7 @@
 //! symbolic factorization for reuse, and conjugate gradients.
 
 pub(crate) mod conjugate_gradient;
+pub(crate) mod factor_buffer;
 pub(crate) mod graph_matrix;
 pub(crate) mod laplacian;
 pub(crate) mod nested_dissection;
@@ -10,4 +11,5 @@ pub(crate) mod sparse;
 pub use conjugate_gradient::{jacobi_cg2, CgOutcome};
 pub use graph_matrix::GraphPattern;
 pub use laplacian::{cotangent_weights, CotanWeights};
-pub use sparse::{release_spare, LuSolver, SolveError, SpdSolver, TripletList};
+pub use factor_buffer::release_spare;
+pub use sparse::{LuSolver, SolveError, SpdSolver, TripletList};

@@ -12,6 +12,7 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, Symbolic
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::perm::PermRef;
 use faer::{Conj, Mat, Par, Side};
+use super::factor_buffer::{offer_spare, take_spare};
 use super::nested_dissection::Dissection;
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -298,53 +299,6 @@ impl Drop for SpdSolver {
     }
 }
 
-/// Factor entries from which a factorization's value buffer is kept for the next one when its
-/// solver is dropped ([`release_spare`]).
-const SPARE_ENTRIES: usize = 1 << 24;
-
-/// The value buffer of the largest factorization whose solver was dropped (see
-/// [`take_spare`]).
-static SPARE: std::sync::Mutex<Vec<f64>> = std::sync::Mutex::new(Vec::new());
-
-/// Give `values` a capacity of at least `need` entries: the spare buffer when it is large
-/// enough, else a new one with a quarter more room for the next pattern's fill (capacity that
-/// is never written costs no memory). Writing a large factor's buffer for the first time can
-/// cost more than the factorization on a virtual machine (every fresh page faults through to
-/// the host; see docs/method.md, "Large meshes"), and the pipeline factors such systems one
-/// after another (the flattening's, then the transport's).
-fn take_spare(values: &mut Vec<f64>, need: usize) {
-    if values.capacity() >= need || need < SPARE_ENTRIES {
-        return;
-    }
-    if let Ok(mut spare) = SPARE.lock() {
-        if spare.capacity() >= need {
-            *values = std::mem::take(&mut *spare);
-            return;
-        }
-    }
-    *values = Vec::with_capacity(need + need / 4);
-}
-
-/// Keep `values` as the spare buffer when it is large and larger than the spare.
-fn offer_spare(values: &mut Vec<f64>) {
-    if values.capacity() < SPARE_ENTRIES {
-        return;
-    }
-    if let Ok(mut spare) = SPARE.lock() {
-        if spare.capacity() < values.capacity() {
-            *spare = std::mem::take(values);
-        }
-    }
-}
-
-/// Free the spare factor buffer (the parameterization calls this when its last large
-/// factorization is done, so that later stages do not carry it).
-pub fn release_spare() {
-    if let Ok(mut spare) = SPARE.lock() {
-        *spare = Vec::new();
-    }
-}
-
 /// The supernodal symbolic Cholesky factorization of the symmetric pattern (`col_ptr`,
 /// `row_idx`), ordered by `dissection` when given, else by AMD.
 fn symbolic_cholesky(col_ptr: &[usize], row_idx: &[usize], dissection: Option<&Dissection>, what: &'static str) -> Result<SymbolicCholesky<usize>, SolveError> {
@@ -433,29 +387,6 @@ impl LuSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_large_factor_buffer_is_handed_to_the_next_factorization() {
-        // Capacity only: no page of these buffers is written.
-        let mut dropped: Vec<f64> = Vec::with_capacity(SPARE_ENTRIES + 100);
-        let address = dropped.as_ptr();
-        offer_spare(&mut dropped);
-        assert_eq!(dropped.capacity(), 0, "the buffer went to the spare");
-        let mut next = Vec::new();
-        take_spare(&mut next, SPARE_ENTRIES + 50);
-        assert_eq!(next.as_ptr(), address, "the next large factorization takes it");
-        // Too large for the spare: a new buffer with a quarter more room.
-        offer_spare(&mut next);
-        let mut larger = Vec::new();
-        take_spare(&mut larger, SPARE_ENTRIES + 200);
-        assert!(larger.capacity() >= (SPARE_ENTRIES + 200) * 5 / 4 && larger.as_ptr() != address);
-        release_spare();
-        assert_eq!(SPARE.lock().unwrap().capacity(), 0);
-        // Small systems neither take nor leave one.
-        let mut small = vec![0.0; 10];
-        offer_spare(&mut small);
-        assert_eq!(small.len(), 10);
-    }
 
     #[test]
     fn assembly_sums_duplicates_like_a_dense_accumulation() {

@@ -181,6 +181,15 @@ fn representatives(vertices: &[[f64; 3]], tolerance: f64) -> Vec<u32> {
     rep
 }
 
+/// The input faces that welding kept, in order (the welded mesh's faces are these, remapped):
+/// those whose three vertices are kept and distinct under `old_to_new`.
+pub(crate) fn kept_faces<'a>(mesh: &'a TriMesh, old_to_new: &'a [u32]) -> impl Iterator<Item = usize> + 'a {
+    mesh.faces.iter().enumerate().filter_map(move |(f, face)| {
+        let [a, b, c] = face.map(|v| old_to_new.get(v as usize).copied().unwrap_or(REMOVED));
+        (a != REMOVED && b != REMOVED && c != REMOVED && a != b && b != c && a != c).then_some(f)
+    })
+}
+
 /// Result of [`split_pinched_vertices`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Split {

@@ -151,19 +151,11 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
 /// flattening then drops the two faces of the punctured quad (`punctured`, indices in the
 /// welded mesh) and keeps the order of the others.
 fn measured_input_faces(mesh: &TriMesh, old_to_new: &[u32], punctured: Option<[usize; 2]>) -> Vec<usize> {
-    let mut out = Vec::with_capacity(mesh.n_faces());
-    let mut welded_face = 0usize;
-    for (f, face) in mesh.faces.iter().enumerate() {
-        let [a, b, c] = face.map(|v| old_to_new.get(v as usize).copied().unwrap_or(repair::REMOVED));
-        if a == repair::REMOVED || b == repair::REMOVED || c == repair::REMOVED || a == b || b == c || a == c {
-            continue;
-        }
-        if !punctured.is_some_and(|p| p.contains(&welded_face)) {
-            out.push(f);
-        }
-        welded_face += 1;
-    }
-    out
+    repair::kept_faces(mesh, old_to_new)
+        .enumerate()
+        .filter(|(welded_face, _)| !punctured.is_some_and(|p| p.contains(welded_face)))
+        .map(|(_, f)| f)
+        .collect()
 }
 
 /// The measured faces' `d_area` and corners' `d_angle` put at their input faces (`NaN`

@@ -6,7 +6,7 @@ use crate::error::Error;
 use crate::mesh::repair::{self, Welded};
 use crate::mesh::topology::Topology;
 use crate::mesh::validate::{checked_topology, classify, classify_checked};
-use crate::mesh::{validate, SurfaceKind, TriMesh};
+use crate::mesh::{validate, MeshError, SurfaceKind, TriMesh};
 use std::time::Instant;
 
 /// A mesh checked, welded and classified.
@@ -35,13 +35,19 @@ pub(crate) fn prepare(mesh: &TriMesh, options: &ParamOptions) -> Result<Prepared
     let input_topology = checked_topology(mesh)?;
     let input_closed = classify(&input_topology) == Some(SurfaceKind::ClosedSphere);
     let diag = mesh.bounding_box_diagonal();
-    let welded = split_pinches(mesh, repair::weld_coincident(mesh, options.weld_tolerance * diag))?;
-    let work = &welded.mesh;
+    let welded = repair::weld_coincident(mesh, options.weld_tolerance * diag);
     // Nothing welded or dropped: the input's topology is the welded mesh's.
-    let (kind, topology) = if work.vertices.len() == mesh.vertices.len() && work.faces == mesh.faces {
-        classify_checked(input_topology)?
+    let (welded, (kind, topology)) = if welded.mesh.vertices.len() == mesh.vertices.len() && welded.mesh.faces == mesh.faces {
+        (welded, classify_checked(input_topology)?)
     } else {
-        validate(work)?
+        match validate(&welded.mesh) {
+            Err(MeshError::NonManifoldVertex { .. }) => {
+                let split = split_pinches(mesh, welded)?;
+                let validated = validate(&split.mesh)?;
+                (split, validated)
+            }
+            validated => (welded, validated?),
+        }
     };
     Ok(Prepared { start, welded, kind, topology, input_closed })
 }
@@ -51,22 +57,11 @@ pub(crate) fn prepare(mesh: &TriMesh, options: &ParamOptions) -> Result<Prepared
 /// input) split again, one vertex per fan. `input` is manifold, so each of its vertices has
 /// its faces in one fan of the welded vertex: the input vertex goes to that fan's vertex.
 fn split_pinches(input: &TriMesh, welded: Welded) -> Result<Welded, Error> {
-    let unchanged = welded.mesh.vertices.len() == input.vertices.len() && welded.mesh.faces == input.faces;
-    if unchanged || !matches!(validate(&welded.mesh), Err(crate::mesh::MeshError::NonManifoldVertex { .. })) {
-        return Ok(welded);
-    }
     let split = repair::split_pinched_vertices(&welded.mesh)?;
     let mut old_to_new = welded.old_to_new.clone();
-    // Welding keeps the order of the faces it does not drop, and the split keeps every face.
-    let mut kept = split.mesh.faces.iter();
-    for face in &input.faces {
-        let mapped = face.map(|v| welded.old_to_new.get(v as usize).copied().unwrap_or(repair::REMOVED));
-        let [a, b, c] = mapped;
-        if mapped.contains(&repair::REMOVED) || a == b || b == c || a == c {
-            continue;
-        }
-        let Some(new) = kept.next() else { break };
-        for (&v, &w) in face.iter().zip(new) {
+    // The split keeps every face of the welded mesh, in order.
+    for (f, new) in repair::kept_faces(input, &welded.old_to_new).zip(&split.mesh.faces) {
+        for (&v, &w) in input.faces[f].iter().zip(new) {
             old_to_new[v as usize] = w;
         }
     }

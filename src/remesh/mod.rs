@@ -308,8 +308,8 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
             }
             Err(Error::Mesh(e @ MeshError::SeveralComponents { .. })) if kept.is_none() => {
                 match keep_main_component(&work) {
-                    Some(main) if main.dropped_area_share <= DROPPED_AREA_SHARE => {
-                        work = std::borrow::Cow::Owned(main.mesh.clone());
+                    Some(mut main) if main.dropped_area_share <= DROPPED_AREA_SHARE => {
+                        work = std::borrow::Cow::Owned(std::mem::take(&mut main.mesh));
                         kept = Some(main);
                     }
                     _ => return Err(Error::Mesh(e)),

@@ -348,11 +348,17 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Check { input, json } => {
             // Pinched vertices are split as `param` and `remesh` split them.
             let m = read(&input)?;
-            let (m, split_vertices) = match mesh::repair::split_pinched_vertices(&m) {
-                Ok(split) if !split.copy_of.is_empty() => (split.mesh, split.copy_of.len()),
-                _ => (m, 0),
+            let (m, split_vertices, summary) = match mesh::inspect(&m) {
+                Err(mesh::MeshError::NonManifoldVertex { .. }) => match mesh::repair::split_pinched_vertices(&m) {
+                    Ok(split) => {
+                        let summary = mesh::inspect(&split.mesh);
+                        (split.mesh, split.copy_of.len(), summary)
+                    }
+                    Err(e) => (m, 0, Err(e)),
+                },
+                summary => (m, 0, summary),
             };
-            let summary = mesh::inspect(&m).map_err(|e| format!("{}: {e}", input.display()))?;
+            let summary = summary.map_err(|e| format!("{}: {e}", input.display()))?;
             if json {
                 #[derive(serde::Serialize)]
                 struct Checked<'a> {

@@ -30,11 +30,17 @@ pub fn run(args: ParamArgs) -> Result<(), Failure> {
         refuse_overwrite(&input, p)?;
     }
     outputs::refuse_duplicates(&[&[output.as_path()][..], &extra].concat())?;
-    let m = split_pinches(&input, read(&input)?);
+    let mut m = read(&input)?;
     let bar = cli_progress::Bar::new(quiet);
     let mut options = ParamOptions::default().with_domain(domain);
     map.apply(&mut options);
-    let cap = parameterize(&m, &options, &bar).map_err(|e| failure::of_pipeline("param", &input, bar.stage(), e))?;
+    let mut cap = parameterize(&m, &options, &bar);
+    // A pinched input is mapped with those vertices split (the library refuses it).
+    if matches!(cap, Err(capmesh::Error::Mesh(capmesh::mesh::MeshError::NonManifoldVertex { .. }))) {
+        m = split_pinches(&input, m);
+        cap = parameterize(&m, &options, &bar);
+    }
+    let cap = cap.map_err(|e| failure::of_pipeline("param", &input, bar.stage(), e))?;
     bar.finish();
     let mut staged = vec![outputs::stage_mesh(&output, &cap.cap_mesh(&m))?];
     if let Some(path) = &uv {
@@ -64,9 +70,9 @@ pub fn run(args: ParamArgs) -> Result<(), Failure> {
     refuse_poor(&input, r, map.allow_poor_map)
 }
 
-/// The input with its pinched vertices split, one per fan (the outputs then have the input's
-/// vertices in their order and the copies after them), said on standard output; the input
-/// itself when it has none, or when it is not a surface (the parameterization names why).
+/// The pinched input with those vertices split, one per fan (the outputs then have the
+/// input's vertices in their order and the copies after them), said on standard output; the
+/// input itself when the split fails (the parameterization then names why).
 pub(crate) fn split_pinches(input: &Path, m: capmesh::TriMesh) -> capmesh::TriMesh {
     match capmesh::mesh::repair::split_pinched_vertices(&m) {
         Ok(split) if !split.copy_of.is_empty() => {
