@@ -15,6 +15,7 @@ use faer::{Conj, Mat, Par, Side};
 use super::factor_buffer::{offer_spare, take_spare};
 use super::nested_dissection::Dissection;
 use rayon::prelude::*;
+use std::mem::MaybeUninit;
 use std::sync::Arc;
 
 /// Errors of the sparse direct solvers.
@@ -157,7 +158,8 @@ type AnalysedPattern = (Vec<usize>, Vec<usize>, SymbolicCholesky<usize>);
 /// 10^3 to 10^6 unknowns and a planar-graph pattern, where faer's thread pool spent more time
 /// waking workers than they saved (also with the pipeline on a worker thread, `crate::pool`,
 /// and for the largest systems only). Parallelism lives one level up, over independent work,
-/// and over the right-hand sides of large systems (from 20 000 unknowns).
+/// and over the right-hand sides of large systems (from 20 000 unknowns); only factors of
+/// [`PARALLEL_FACTOR_ENTRIES`] or more use the pool, when nothing else runs beside them.
 ///
 /// Clones share the symbolic factorization: [`SpdSolver::analyze`] once, then clone for
 /// parallel numeric factorizations of matrices with that pattern.
@@ -183,6 +185,12 @@ pub struct SpdSolver {
     /// Solve one right-hand side per thread in [`SpdSolver::solve_in_place`] (large systems);
     /// see [`SpdSolver::set_parallel_columns`].
     sequential_columns: bool,
+    /// The numeric factorization's work space.
+    scratch: Scratch,
+    /// Tests only: factor on every thread from this many entries instead of
+    /// [`PARALLEL_FACTOR_ENTRIES`].
+    #[cfg(test)]
+    parallel_entries: Option<usize>,
 }
 
 impl SpdSolver {
@@ -218,8 +226,16 @@ impl SpdSolver {
         // itself, and clearing them first wrote the hand's 21 MB factor twice.
         take_spare(&mut self.values, sym.len_val());
         self.values.resize(sym.len_val(), 0.0);
-        let mut buf = MemBuffer::try_new(sym.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())).map_err(|e| backend(&e))?;
-        sym.factorize_numeric_llt(&mut self.values, a.as_ref(), Side::Lower, Default::default(), Par::Seq, MemStack::new(&mut buf), Default::default())
+        // Both cores for the large factorizations made while the other core waits (not while
+        // two puncture ends flatten at once, see `sequential_columns`).
+        #[cfg(test)]
+        let parallel_entries = self.parallel_entries.unwrap_or(PARALLEL_FACTOR_ENTRIES);
+        #[cfg(not(test))]
+        let parallel_entries = PARALLEL_FACTOR_ENTRIES;
+        let par = if !self.sequential_columns && sym.len_val() >= parallel_entries { Par::rayon(0) } else { Par::Seq };
+        let req = sym.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+        let scratch = self.scratch.at_least(req.unaligned_bytes_required()).map_err(|e| backend(&e))?;
+        sym.factorize_numeric_llt(&mut self.values, a.as_ref(), Side::Lower, Default::default(), par, MemStack::new(scratch), Default::default())
             .map_err(|_| SolveError::NotPositiveDefinite { what })?;
         self.factored = true;
         Ok(())
@@ -290,6 +306,40 @@ impl SpdSolver {
             .map_err(|e| SolveError::Backend { what, message: format!("{e:?}") })?;
         LltRef::new(sym, &self.values).solve_in_place_with_conj(Conj::No, m.as_mut(), Par::Seq, MemStack::new(&mut buf));
         copy_back(&m, rhs, what)
+    }
+}
+
+/// Factors of at least this many entries are computed on every thread of the pool when the
+/// solver's columns are not sequential ([`SpdSolver::set_parallel_columns`]): the
+/// full-resolution transport's factorizations, made while the other core has nothing to do
+/// (issue 27; on the 776k-vertex brain, 66-76 million entries each, the transport stage's
+/// median fell from 44.9 to 41.1 s in four alternating pairs of runs). Smaller ones stay on
+/// the calling thread (see [`SpdSolver`]). The factor comes out the same bytes on any
+/// number of threads (faer splits the dense updates' rows and columns among the threads, not
+/// their sums; tested).
+pub const PARALLEL_FACTOR_ENTRIES: usize = 1 << 24;
+
+/// The numeric factorization's work space, kept between factorizations: on the 776k brain it
+/// is about 90 MB a factorization, above glibc's largest threshold for reusing freed memory,
+/// so each factorization wrote fresh pages. Clones start empty.
+#[derive(Default)]
+struct Scratch(Vec<MaybeUninit<u8>>);
+
+impl Clone for Scratch {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl Scratch {
+    /// At least `bytes` bytes of work space (an error when they cannot be allocated).
+    fn at_least(&mut self, bytes: usize) -> Result<&mut [MaybeUninit<u8>], std::collections::TryReserveError> {
+        if self.0.len() < bytes {
+            self.0 = Vec::new();
+            self.0.try_reserve_exact(bytes)?;
+            self.0.resize_with(bytes, MaybeUninit::uninit);
+        }
+        Ok(&mut self.0)
     }
 }
 
@@ -460,6 +510,28 @@ mod tests {
         let scale = x.iter().fold(0.0f64, |s, v| s.max(v.abs()));
         for (p, q) in x.iter().zip(y) {
             assert!((p - q).abs() <= 1e-10 * scale, "{p} vs {q}");
+        }
+    }
+
+    #[test]
+    fn parallel_factorization_gives_the_same_bytes_on_any_number_of_threads() {
+        let m = 250;
+        let a = grid_matrix(m);
+        let rhs: Vec<f64> = (0..m * m).map(|k| ((k * 17) % 11) as f64 - 5.0).collect();
+        let on = |threads: usize, parallel: bool| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| {
+                let mut s = SpdSolver::new();
+                s.parallel_entries = Some(if parallel { 0 } else { usize::MAX });
+                let x = factor_and_solve(&mut s, &a, &rhs);
+                (x, s.values.clone())
+            })
+        };
+        let (x_seq, l_seq) = on(1, false);
+        for threads in [1, 2, 3] {
+            let (x, l) = on(threads, true);
+            assert!(l.iter().zip(&l_seq).all(|(p, q)| p.to_bits() == q.to_bits()), "factor on {threads} threads");
+            assert!(x.iter().zip(&x_seq).all(|(p, q)| p.to_bits() == q.to_bits()), "solution on {threads} threads");
         }
     }
 
