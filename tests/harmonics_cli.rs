@@ -32,13 +32,13 @@ fn harmonics_on_the_face_writes_reconstruction_coefficients_and_report() {
     assert_eq!(std::fs::read(&input).unwrap(), before, "input modified");
 
     let original = capmesh::io::read_mesh(&input).unwrap();
-    let recon = capmesh::io::read_mesh(&out).unwrap();
+    let recon = capmesh::io::read_mesh(out).unwrap();
     assert_eq!(recon.vertices.len(), original.vertices.len());
     assert_eq!(recon.faces, original.faces, "connectivity changed");
     let diag = original.bounding_box_diagonal();
 
     // The report: one error row per order 0..=N, mean error strictly falling with the order.
-    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(report).unwrap()).unwrap();
     assert_eq!(r["order"].as_u64(), Some(ORDER as u64));
     assert_eq!(r["vertices"].as_u64(), Some(original.vertices.len() as u64));
     let rows = r["errors_by_order"].as_array().unwrap();
@@ -64,7 +64,7 @@ fn harmonics_on_the_face_writes_reconstruction_coefficients_and_report() {
     assert!((measured - reported).abs() <= 1e-9 * diag, "{measured} vs {reported}");
 
     // The coefficients, evaluated by the library at the cap positions, give the same surface.
-    let c: serde_json::Value = serde_json::from_slice(&std::fs::read(&coefficients).unwrap()).unwrap();
+    let c: serde_json::Value = serde_json::from_slice(&std::fs::read(coefficients).unwrap()).unwrap();
     let z_star = c["z_star"].as_f64().unwrap();
     assert_eq!(Some(z_star), r["z_star"].as_f64());
     assert!((c["q1"].as_f64().unwrap() - 2.0 / (1.0 - z_star)).abs() < 1e-12);
@@ -86,7 +86,7 @@ fn harmonics_on_the_face_writes_reconstruction_coefficients_and_report() {
         order: c["order"].as_u64().unwrap() as usize,
         coefficients: coefficients_by_index.into_iter().map(Option::unwrap).collect(),
     };
-    let cap = capmesh::io::read_mesh(&cap).unwrap();
+    let cap = capmesh::io::read_mesh(cap).unwrap();
     assert_eq!(cap.faces, original.faces);
     for p in &cap.vertices {
         assert!((dist(*p, [0.0; 3]) - 1.0).abs() < 1e-9 && p[2] >= z_star - 1e-9, "{p:?}");

@@ -37,12 +37,12 @@ fn scha_keeps_the_face_boundary_at_order_15() {
     assert!(stdout.contains("scha basis (neumann)") && stdout.contains("boundary loop"), "{stdout}");
 
     let original = capmesh::io::read_mesh(&input).unwrap();
-    let recon = capmesh::io::read_mesh(&out).unwrap();
+    let recon = capmesh::io::read_mesh(out).unwrap();
     assert_eq!(recon.faces, original.faces);
     let diag = original.bounding_box_diagonal();
 
     // The figures at N = 15.
-    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(report).unwrap()).unwrap();
     assert_eq!(r["basis"], serde_json::json!({"spherical_cap": "neumann"}));
     let top = &r["errors_by_order"][ORDER];
     let (mean, max) = (top["mean_relative"].as_f64().unwrap(), top["max_relative"].as_f64().unwrap());
@@ -60,7 +60,7 @@ fn scha_keeps_the_face_boundary_at_order_15() {
     assert!((worst / diag - boundary).abs() < 1e-9, "{worst} vs {boundary}");
 
     // The coefficients file names the basis and every degree; re-evaluated it gives the surface.
-    let c: serde_json::Value = serde_json::from_slice(&std::fs::read(&coefficients).unwrap()).unwrap();
+    let c: serde_json::Value = serde_json::from_slice(&std::fs::read(coefficients).unwrap()).unwrap();
     assert_eq!((c["basis"].as_str(), c["boundary"].as_str()), (Some("scha"), Some("neumann")));
     assert!(c.get("q1").is_none() && c["definition"].as_str().unwrap().contains("Theta"));
     let list = c["coefficients"].as_array().unwrap();
@@ -85,7 +85,7 @@ fn scha_keeps_the_face_boundary_at_order_15() {
         order: ORDER,
         coefficients: by_index,
     };
-    let cap = capmesh::io::read_mesh(&cap).unwrap();
+    let cap = capmesh::io::read_mesh(cap).unwrap();
     let evaluated = fitted.reconstruct(&cap.vertices, ORDER).unwrap();
     let differ = evaluated.iter().zip(&recon.vertices).map(|(a, b)| dist(*a, *b)).fold(0.0f64, f64::max);
     assert!(differ <= 1e-9 * diag, "coefficients re-evaluated differ by {differ}");

@@ -4,6 +4,7 @@
 //! and, for the shape stage, on the starts of [`from_best_start`] in turn (isotropic samples of
 //! [`super::sample`], then the grid) until one meets the quality bar.
 
+use super::sample::Place;
 use super::{equalize, grid, polygon_of, pullback, sample, shape, sizing, Optimize, RemeshOptions};
 use crate::cap::{stereographic, CapMap, InverseMap};
 use crate::error::Error;
@@ -131,7 +132,7 @@ fn own_crossings(r: &FromCap) -> usize {
 /// then slivers, then the highest mean smallest angle is kept. Crossing faces within two edge
 /// lengths of the input's own crossings are the input's ([`InputCrossings`]): a face scan that
 /// crosses itself made every start miss the bar, and three starts cost three shape stages.
-pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>, surface_area: f64, progress: &dyn Progress) -> Result<FromCap, Error> {
+pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &Place<'_>, surface_area: f64, progress: &dyn Progress) -> Result<FromCap, Error> {
     // Crossing faces of a start's remesh that lie at crossings of the input are inherited
     // from it (any remesh on the surface has them): only the others count against a start.
     let input_crossings = ctx.input_crossings;
@@ -233,7 +234,7 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
         let quad: Vec<u32> = map.bottom_faces.iter().filter_map(|&f| mesh.faces.get(f)).flatten().copied().collect();
         let (corners, rim_radius) = polygon_of(quad.into_iter(), &map.plane);
         pullback::rim_band_into_polygon(&mut planar[..split], &corners, rim_radius);
-        let positions = pullback::pull_back_closed_from(mesh, &map, &grid, &planar[..split]).ok_or_else(no_face)?;
+        let positions = pullback::pull_back_closed_from(mesh, map, &grid, &planar[..split]).ok_or_else(no_face)?;
         (grid.mesh, planar, positions, split)
     } else {
         let mut planar: Vec<[f64; 2]> = cap.vertices.iter().map(|&x| stereographic(x)).collect();
@@ -271,8 +272,8 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
     }
     if shaped {
         progress::check(progress, Stage::Remesh, 0.3, "shaping the triangles")?;
-        let lift = shape::state::SurfaceLift::new(&inverse);
-        let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, &input_boundary) };
+        let lift = shape::state::SurfaceLift::new(inverse);
+        let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, input_boundary) };
         let density = sizing::vertex_density(mesh, options.shape.sizing, faces.len());
         let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed, density: density.as_deref() };
         let (new_faces, stays, planar_points, targets, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
@@ -303,7 +304,7 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
     // the remesh's scale: crossing faces are untangled last ([`shape::uncross`]).
     let mut uncross_report = shape::uncross::UncrossReport::default();
     if shaped {
-        let lift = shape::state::SurfaceLift::new(&inverse);
+        let lift = shape::state::SurfaceLift::new(inverse);
         let role: Vec<shape::state::Role> = (0..positions.len()).map(|v| if fixed[v] || !has_plane[v] { shape::state::Role::Fixed } else { shape::state::Role::Free }).collect();
         let orientation = shape::state::planar_orientation(&faces, &planar, &has_plane, &role);
         let mut state = shape::state::Shaping { faces, plane: planar, position: positions, hint: vec![u32::MAX; has_plane.len()], role, has_plane: has_plane.clone(), orientation };

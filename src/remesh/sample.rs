@@ -42,13 +42,17 @@ const COUNT_TOLERANCE: usize = 400;
 /// helmet: 51.0 against 49.2 degrees; the other bundled meshes' grids have 25.7 to 37.3).
 pub(crate) const GRID_KEPT_ANGLE_DEG: f64 = 45.0;
 
+/// Places cap points on the input surface (their lifts through the inverse map; `None` where
+/// a point has no lift).
+pub(crate) type Place<'a> = dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>> + 'a;
+
 /// Samples tried (each from another stretch of the candidate sequence) before the grid, while
 /// their remeshes miss the quality bar (`super::from_cap::from_best_start`).
 pub(crate) const SAMPLES: usize = 2;
 
 /// Whether the lift of `grid` is near-isotropic already ([`GRID_KEPT_ANGLE_DEG`]): then the
 /// shape stage starts from it.
-pub(crate) fn grid_is_isotropic(grid: &TriMesh, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>) -> bool {
+pub(crate) fn grid_is_isotropic(grid: &TriMesh, place: &Place<'_>) -> bool {
     let lifted: Option<Vec<[f64; 3]>> = place(&grid.vertices).into_iter().collect();
     lifted.is_some_and(|lifted| crate::metrics::angles::angle_quality_of(&lifted, &grid.faces).mean_min_angle_deg >= GRID_KEPT_ANGLE_DEG)
 }
@@ -58,7 +62,7 @@ pub(crate) fn grid_is_isotropic(grid: &TriMesh, place: &dyn Fn(&[[f64; 3]]) -> V
 /// (`None` where the map has no point). `None` when the sample cannot be triangulated with the
 /// rim as its hull (then the grid is used as it is). `variant` picks the stretch of the
 /// candidate sequence (another sample of the same surface).
-pub(crate) fn isotropic_cap(grid: &TriMesh, surface_area: f64, place: &dyn Fn(&[[f64; 3]]) -> Vec<Option<[f64; 3]>>, variant: usize) -> Option<TriMesh> {
+pub(crate) fn isotropic_cap(grid: &TriMesh, surface_area: f64, place: &Place<'_>, variant: usize) -> Option<TriMesh> {
     let z_rim = grid.vertices.last()?[2];
     let rim = grid.vertices.iter().rev().take_while(|p| p[2] == z_rim).count();
     // The grid's rings by height, lowest first: the lowest `KEPT_RINGS` stay as they are.

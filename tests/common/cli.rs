@@ -7,8 +7,10 @@ use std::process::{Command, Output};
 /// The `capmesh` binary built for this test run.
 pub fn capmesh() -> Command {
     // `option_env!`: test binaries that do not run the command line still compile without it.
-    let exe = option_env!("CARGO_BIN_EXE_capmesh").expect("the capmesh binary is built with the `cli` feature (on by default)");
-    Command::new(exe)
+    match option_env!("CARGO_BIN_EXE_capmesh") {
+        Some(exe) => Command::new(exe),
+        None => panic!("the capmesh binary is built with the `cli` feature (on by default)"),
+    }
 }
 
 /// The output files of one `capmesh harmonics` run, in a test's directory.

@@ -169,7 +169,7 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
         // Fewer crossings, or as many and a larger smallest angle; the fewest crossings
         // first, then the best-shaped ring.
         let better = count < now || (slivers && count == now && angle > angle_now + MIN_GAIN);
-        if better && best.as_ref().is_none_or(|b| count < b.0 || (count == b.0 && angle > b.1)) {
+        if better && best.as_ref().map_or(true, |b| count < b.0 || (count == b.0 && angle > b.1)) {
             best = Some((count, angle, q, x, face));
         }
     }
