@@ -1,10 +1,11 @@
 //! The repairs `remesh` makes instead of refusing an input, as marching cubes leaves them:
 //! surfaces that touch themselves at a vertex (pinched: the vertex's faces form several fans)
 //! have such vertices split, one per fan (the parameterization splits those welding makes);
-//! a surface with specks beside it is remeshed without them.
+//! a surface with specks beside it is remeshed without them; faces wound against their
+//! neighbours are flipped.
 
 use capmesh::io::read_mesh;
-use capmesh::mesh::repair::split_pinched_vertices;
+use capmesh::mesh::repair::{orient_coherently, split_pinched_vertices};
 use capmesh::mesh::{validate, MeshError, SurfaceKind, TriMesh};
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::progress::NoProgress;
@@ -142,4 +143,65 @@ fn a_second_surface_of_its_own_size_is_still_an_error() {
     let (m, _) = bunny_with(&speck(0.2 * diagonal, [2.0 * diagonal, 0.0, 0.0]));
     let err = remesh(&m, &RemeshOptions::default(), &NoProgress).unwrap_err();
     assert!(err.to_string().contains("2 connected components"), "{err}");
+}
+
+/// The bundled closed hippocampus with every seventh face wound the other way (its second and
+/// third corners swapped, so that the repair gives back the very faces).
+fn misoriented_hippocampus() -> (TriMesh, TriMesh, usize) {
+    let m = read_mesh(&common::data("closed_hippocampus_choi.obj")).unwrap();
+    let mut bad = m.clone();
+    let mut flipped = 0;
+    for f in bad.faces.iter_mut().step_by(7) {
+        f.swap(1, 2);
+        flipped += 1;
+    }
+    (m, bad, flipped)
+}
+
+#[test]
+fn faces_wound_against_their_neighbours_are_flipped_back() {
+    let (good, bad, flipped) = misoriented_hippocampus();
+    assert!(matches!(validate(&bad), Err(MeshError::InconsistentOrientation { .. })));
+    let o = orient_coherently(&bad).unwrap();
+    assert_eq!(o.flipped_faces, flipped);
+    assert_eq!(validate(&o.mesh).unwrap().0, SurfaceKind::ClosedSphere);
+    // Each flipped face walks its corners the good mesh's way round.
+    assert_eq!(o.mesh, good);
+    assert_eq!(o.flipped.iter().enumerate().filter(|(_, &x)| x).map(|(t, _)| t % 7).max(), Some(0));
+    // The majority is kept: the whole mesh turned inside out flips nothing back.
+    let inward = TriMesh::new(good.vertices.clone(), good.faces.iter().map(|f| [f[0], f[2], f[1]]).collect());
+    assert!(orient_coherently(&inward).is_none());
+    // A Moebius strip (five triangles (i, i+1, i+2) mod 5) cannot be oriented.
+    let strip = TriMesh::new(
+        (0..5).map(|k| { let t = k as f64 * 0.4 * std::f64::consts::PI; [t.cos(), t.sin(), 0.1 * k as f64] }).collect(),
+        (0..5u32).map(|i| [i, (i + 1) % 5, (i + 2) % 5]).collect(),
+    );
+    assert!(orient_coherently(&strip).is_none());
+}
+
+#[test]
+fn remesh_flips_misoriented_faces_and_reports_them() {
+    let (good, bad, flipped) = misoriented_hippocampus();
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 2000 });
+    let (out, rep, points) = capmesh::remesh::remesh_located(&bad, &options, &NoProgress).unwrap();
+    assert_eq!(rep.reoriented_faces, flipped);
+    // The same remesh as the coherent input's.
+    let (alone, _) = remesh(&good, &options, &NoProgress).unwrap();
+    assert_eq!(out, alone);
+    // Surface points weigh the input's own corners, in its order.
+    for (p, x) in points.iter().zip(&out.vertices) {
+        let f = bad.faces[p.face];
+        let q: [f64; 3] = std::array::from_fn(|k| (0..3).map(|c| p.barycentric[c] * bad.vertices[f[c] as usize][k]).sum());
+        assert!((0..3).all(|k| (q[k] - x[k]).abs() <= 1e-9 * good.bounding_box_diagonal()), "{q:?} against {x:?}");
+    }
+    // The command line says so and writes it into the report.
+    let dir = common::TempDir::new("misoriented");
+    let input = dir.path("hippocampus_misoriented.obj");
+    capmesh::io::write_mesh(&input, &bad).unwrap();
+    let report = dir.path("report.json");
+    let run = common::cli::capmesh().arg("remesh").arg(&input).args(["--faces", "2000", "--quiet", "-o"]).arg(dir.path("out.obj")).arg("--report").arg(&report).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(String::from_utf8_lossy(&run.stdout).contains(&format!("{flipped} faces wound against their neighbours")), "{}", String::from_utf8_lossy(&run.stdout));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["reoriented_faces"], flipped);
 }

@@ -159,7 +159,7 @@ type AnalysedPattern = (Vec<usize>, Vec<usize>, SymbolicCholesky<usize>);
 /// waking workers than they saved (also with the pipeline on a worker thread, `crate::pool`,
 /// and for the largest systems only). Parallelism lives one level up, over independent work,
 /// and over the right-hand sides of large systems (from 20 000 unknowns); only factors of
-/// [`PARALLEL_FACTOR_ENTRIES`] or more use the pool, when nothing else runs beside them.
+/// `PARALLEL_FACTOR_ENTRIES` (2^24) entries or more use the pool, when nothing else runs beside them.
 ///
 /// Clones share the symbolic factorization: [`SpdSolver::analyze`] once, then clone for
 /// parallel numeric factorizations of matrices with that pattern.

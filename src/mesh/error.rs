@@ -99,8 +99,9 @@ pub enum MeshError {
     /// Two faces traverse an edge in the same direction.
     #[error(
         "edge from vertex {a} to vertex {b} is used in the same direction by faces {} and {}: \
-         the surface is non-orientable or some faces are flipped; make the orientation consistent \
-         (MeshLab: 'Re-Orient all faces coherently')",
+         the surface is non-orientable or some faces are flipped; make the orientation consistent: \
+         `capmesh remesh` flips the faces wound against their neighbours, the library has \
+         capmesh::mesh::repair::orient_coherently (MeshLab: 'Re-Orient all faces coherently')",
         faces[0], faces[1]
     )]
     InconsistentOrientation {

@@ -1,5 +1,6 @@
-//! Small, safe repairs: welding coincident vertices, dropping unreferenced vertices, and
-//! finding zero-area faces.
+//! Small, safe repairs: welding coincident vertices, dropping unreferenced vertices, finding
+//! zero-area faces, splitting pinched vertices, orienting faces coherently and keeping the
+//! largest piece.
 //!
 //! Welding uses a uniform grid of cell size `tolerance` (hashing the cells), so it is linear in
 //! the number of vertices. Each grid cell keeps only cluster *representatives*: a vertex within
@@ -242,6 +243,94 @@ pub fn split_pinched_vertices(mesh: &TriMesh) -> Result<Split, MeshError> {
         }
     }
     Ok(Split { mesh: TriMesh::new(vertices, faces), copy_of })
+}
+
+/// Result of [`orient_coherently`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reoriented {
+    /// The mesh with each flipped face's second and third corners swapped; the vertices and
+    /// the order of the faces unchanged.
+    pub mesh: TriMesh,
+    /// Whether each face was flipped.
+    pub flipped: Vec<bool>,
+    /// How many faces were flipped.
+    pub flipped_faces: usize,
+}
+
+/// Flip faces so that every edge is walked once in each direction, as MeshLab's "Re-Orient all
+/// faces coherently" does (exported or hand-edited meshes come with some faces wound the
+/// other way). Each piece (faces joined through edges) keeps the orientation of the majority
+/// of its faces, the first face's on a tie. `None` when no face needs a flip, or when the
+/// mesh cannot be oriented (an edge with more than two faces, a one-sided piece such as a
+/// Moebius strip, an out-of-range index or a repeated vertex): validation then says why.
+pub fn orient_coherently(mesh: &TriMesh) -> Option<Reoriented> {
+    let n = mesh.n_vertices();
+    let faces = &mesh.faces;
+    if faces.iter().any(|f| f.iter().any(|&v| v as usize >= n) || f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) {
+        return None;
+    }
+    const NO_FACE: u32 = u32::MAX;
+    let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
+    let mut edges: FastMap<u64, [u32; 2]> = FastMap::default();
+    for (t, f) in faces.iter().enumerate() {
+        for k in 0..3 {
+            let slot = edges.entry(key(f[k], f[(k + 1) % 3])).or_insert([NO_FACE; 2]);
+            match slot {
+                [NO_FACE, _] => slot[0] = t as u32,
+                [_, NO_FACE] => slot[1] = t as u32,
+                _ => return None,
+            }
+        }
+    }
+    // Whether face `g` walks `a -> b` as given.
+    let walks = |g: usize, a: u32, b: u32| (0..3).any(|k| faces[g][k] == a && faces[g][(k + 1) % 3] == b);
+    // Per face: unseen, kept (false) or flipped (true).
+    let mut flip: Vec<Option<bool>> = vec![None; faces.len()];
+    let mut stack = Vec::new();
+    for start in 0..faces.len() {
+        if flip[start].is_some() {
+            continue;
+        }
+        flip[start] = Some(false);
+        stack.push(start);
+        let mut piece = Vec::new();
+        while let Some(t) = stack.pop() {
+            piece.push(t);
+            let flipped = flip[t] == Some(true);
+            for k in 0..3 {
+                let (a, b) = (faces[t][k], faces[t][(k + 1) % 3]);
+                let [p, q] = edges[&key(a, b)];
+                let g = if p as usize == t { q } else { p };
+                if g == NO_FACE {
+                    continue;
+                }
+                let g = g as usize;
+                // Face t walks a -> b (flipped: b -> a); g must walk the other way.
+                let needed = walks(g, a, b) != flipped;
+                match flip[g] {
+                    None => {
+                        flip[g] = Some(needed);
+                        stack.push(g);
+                    }
+                    Some(f) if f != needed => return None,
+                    Some(_) => {}
+                }
+            }
+        }
+        let flipped = piece.iter().filter(|&&t| flip[t] == Some(true)).count();
+        if 2 * flipped > piece.len() {
+            for &t in &piece {
+                flip[t] = flip[t].map(|f| !f);
+            }
+        }
+    }
+    let flipped: Vec<bool> = flip.into_iter().map(|f| f == Some(true)).collect();
+    let flipped_faces = flipped.iter().filter(|&&f| f).count();
+    if flipped_faces == 0 {
+        return None;
+    }
+    let faces = faces.iter().zip(&flipped).map(|(f, &x)| if x { [f[0], f[2], f[1]] } else { *f }).collect();
+    Some(Reoriented { mesh: TriMesh::new(mesh.vertices.clone(), faces), flipped, flipped_faces })
 }
 
 /// Result of [`keep_main_component`].

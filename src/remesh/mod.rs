@@ -17,7 +17,7 @@ use crate::error::Error;
 use crate::cap::{stereographic, CapMap, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
 use crate::mesh::geometry::triangle_area;
-use crate::mesh::repair::{keep_main_component, split_pinched_vertices, MainComponent};
+use crate::mesh::repair::{keep_main_component, orient_coherently, split_pinched_vertices, MainComponent};
 use crate::mesh::{MeshError, SurfaceKind, TriMesh};
 use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
@@ -197,6 +197,9 @@ pub struct RemeshReport {
     /// Copies made of pinched input vertices, one per fan beyond the first
     /// ([`split_pinched_vertices`]; 0 for a manifold input).
     pub split_vertices: usize,
+    /// Input faces flipped to agree with their neighbours ([`orient_coherently`]; 0 for a
+    /// coherently oriented input).
+    pub reoriented_faces: usize,
     /// Pieces of the input dropped besides the largest (at most [`DROPPED_AREA_SHARE`] of
     /// the area, [`keep_main_component`]); the metrics are against the piece kept.
     pub dropped_components: usize,
@@ -291,16 +294,30 @@ fn other_end(map: &CapMap) -> Option<PunctureEnd> {
 /// two ends' search maps often tie, and the finished maps then differ near the puncture
 /// (docs/method.md section 18, "Finely triangulated inputs").
 ///
-/// Two repairs are made when the input needs them, each reported: a vertex where the surface
-/// touches itself is split, one per fan ([`split_pinched_vertices`]; the faces keep their
-/// order), and of several pieces the largest is remeshed when the others hold at most
-/// [`DROPPED_AREA_SHARE`] of the area ([`keep_main_component`]: marching cubes leaves such
-/// specks). Surface points name the input's faces either way.
+/// Three repairs are made when the input needs them, each reported: faces wound against
+/// their neighbours are flipped ([`orient_coherently`]; each piece keeps the orientation of
+/// most of its faces), a vertex where the surface touches itself is split, one per fan
+/// ([`split_pinched_vertices`]; the faces keep their order), and of several pieces the
+/// largest is remeshed when the others hold at most [`DROPPED_AREA_SHARE`] of the area
+/// ([`keep_main_component`]: marching cubes leaves such specks). Surface points name the
+/// input's faces, with weights in the order of the input's corners, either way.
 fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let mut work = std::borrow::Cow::Borrowed(mesh);
     let (mut split, mut kept): (Option<usize>, Option<MainComponent>) = (None, None);
+    // The input faces flipped, and how many.
+    let mut flipped: Option<(Vec<bool>, usize)> = None;
     loop {
         match remesh_manifold(&work, options, progress, locate) {
+            Err(Error::Mesh(e @ MeshError::InconsistentOrientation { .. })) if flipped.is_none() => {
+                let Some(o) = orient_coherently(&work) else { return Err(Error::Mesh(e)) };
+                // Faces keep their order through a split; a dropped speck renumbers them.
+                let mut by_input = vec![false; mesh.n_faces()];
+                for (t, _) in o.flipped.iter().enumerate().filter(|(_, &f)| f) {
+                    by_input[kept.as_ref().map_or(t, |m| m.faces[t] as usize)] = true;
+                }
+                flipped = Some((by_input, o.flipped_faces));
+                work = std::borrow::Cow::Owned(o.mesh);
+            }
             Err(Error::Mesh(MeshError::NonManifoldVertex { .. })) if split.is_none() => {
                 let s = split_pinched_vertices(&work)?;
                 split = Some(s.copy_of.len());
@@ -322,6 +339,13 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
                     report.dropped_area_share = main.dropped_area_share;
                     for p in &mut points {
                         p.face = main.faces[p.face] as usize;
+                    }
+                }
+                if let Some((by_input, count)) = &flipped {
+                    report.reoriented_faces = *count;
+                    // A flipped face lists the input face's corners as (0, 2, 1).
+                    for p in points.iter_mut().filter(|p| by_input[p.face]) {
+                        p.barycentric.swap(1, 2);
                     }
                 }
                 return Ok((out, report, points));
@@ -393,6 +417,7 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
         equalize_seconds,
         metrics_seconds,
         split_vertices: 0,
+        reoriented_faces: 0,
         dropped_components: 0,
         dropped_area_share: 0.0,
     };

@@ -47,6 +47,7 @@ struct Flat<'a> {
     metrics_seconds: f64,
     write_seconds: f64,
     split_vertices: usize,
+    reoriented_faces: usize,
     dropped_components: usize,
     dropped_area_share: f64,
     quality: capmesh::MapQuality,
@@ -121,6 +122,10 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     if rep.split_vertices > 0 {
         outln!("{}", crate::param_cmd::pinch_note(&input, rep.split_vertices));
     }
+    if rep.reoriented_faces > 0 {
+        let n = rep.reoriented_faces;
+        outln!("{}: {n} face{} wound against {} neighbours: flipped to agree with them", input.display(), if n == 1 { "" } else { "s" }, if n == 1 { "its" } else { "their" });
+    }
     warn_if_poor(&input, &rep.param);
     if rep.quality.zero_area_faces > 0 {
         eprintln!(
@@ -145,6 +150,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
                 metrics_seconds: rep.metrics_seconds,
                 write_seconds,
                 split_vertices: rep.split_vertices,
+                reoriented_faces: rep.reoriented_faces,
                 dropped_components: rep.dropped_components,
                 dropped_area_share: rep.dropped_area_share,
                 quality: rep.param.quality,
