@@ -5,7 +5,7 @@
 //! neighbours are flipped.
 
 use capmesh::io::read_mesh;
-use capmesh::mesh::repair::{orient_coherently, split_pinched_vertices};
+use capmesh::mesh::repair::{orient_coherently, remove_duplicate_faces, split_pinched_vertices};
 use capmesh::mesh::{validate, MeshError, SurfaceKind, TriMesh};
 use capmesh::param::{parameterize, ParamOptions};
 use capmesh::progress::NoProgress;
@@ -204,4 +204,30 @@ fn remesh_flips_misoriented_faces_and_reports_them() {
     assert!(String::from_utf8_lossy(&run.stdout).contains(&format!("{flipped} faces wound against their neighbours")), "{}", String::from_utf8_lossy(&run.stdout));
     let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(json["reoriented_faces"], flipped);
+}
+
+#[test]
+fn repeated_faces_are_dropped_by_remesh() {
+    let good = read_mesh(&common::data("closed_hippocampus_choi.obj")).unwrap();
+    // Three repeats: one as is, one rotated, one wound the other way (a flap), placed
+    // among the faces so that the later faces are renumbered.
+    let mut bad = good.clone();
+    for (at, f) in [(10, good.faces[3]), (500, [good.faces[77][1], good.faces[77][2], good.faces[77][0]]), (2000, [good.faces[900][0], good.faces[900][2], good.faces[900][1]])] {
+        bad.faces.insert(at, f);
+    }
+    assert!(matches!(validate(&bad), Err(MeshError::DuplicateFace { .. })));
+    let d = remove_duplicate_faces(&bad).unwrap();
+    assert_eq!((d.removed_faces, &d.mesh), (3, &good));
+    assert!(remove_duplicate_faces(&good).is_none());
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 2000 });
+    let (out, rep, points) = capmesh::remesh::remesh_located(&bad, &options, &NoProgress).unwrap();
+    assert_eq!(rep.duplicate_faces, 3);
+    let (alone, _) = remesh(&good, &options, &NoProgress).unwrap();
+    assert_eq!(out, alone);
+    // Surface points name the faces of the input as given (with its repeats).
+    for (p, x) in points.iter().zip(&out.vertices) {
+        let f = bad.faces[p.face];
+        let q: [f64; 3] = std::array::from_fn(|k| (0..3).map(|c| p.barycentric[c] * bad.vertices[f[c] as usize][k]).sum());
+        assert!((0..3).all(|k| (q[k] - x[k]).abs() <= 1e-9 * good.bounding_box_diagonal()), "{q:?} against {x:?}");
+    }
 }

@@ -72,7 +72,8 @@ pub enum MeshError {
 
     /// A face has the same vertex set as an earlier face.
     #[error(
-        "face {face} has the same three vertices as face {first}; remove duplicate faces \
+        "face {face} has the same three vertices as face {first}; remove duplicate faces: \
+         `capmesh remesh` does, the library has capmesh::mesh::repair::remove_duplicate_faces \
          (MeshLab: 'Remove Duplicate Faces')"
     )]
     DuplicateFace {

@@ -1,6 +1,6 @@
 //! Small, safe repairs: welding coincident vertices, dropping unreferenced vertices, finding
-//! zero-area faces, splitting pinched vertices, orienting faces coherently and keeping the
-//! largest piece.
+//! zero-area faces, splitting pinched vertices, removing duplicate faces, orienting faces
+//! coherently and keeping the largest piece.
 //!
 //! Welding uses a uniform grid of cell size `tolerance` (hashing the cells), so it is linear in
 //! the number of vertices. Each grid cell keeps only cluster *representatives*: a vertex within
@@ -243,6 +243,38 @@ pub fn split_pinched_vertices(mesh: &TriMesh) -> Result<Split, MeshError> {
         }
     }
     Ok(Split { mesh: TriMesh::new(vertices, faces), copy_of })
+}
+
+/// Result of [`remove_duplicate_faces`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Deduplicated {
+    /// The mesh without the later copies; vertices unchanged, faces in their order.
+    pub mesh: TriMesh,
+    /// The input face of each kept face.
+    pub faces: Vec<u32>,
+    /// Faces removed.
+    pub removed_faces: usize,
+}
+
+/// Drop every face that uses the same three vertices as an earlier one, in any order (an
+/// exporter's repeated faces, or a flap wound both ways), as MeshLab's "Remove Duplicate
+/// Faces" does; `None` when there is none.
+pub fn remove_duplicate_faces(mesh: &TriMesh) -> Option<Deduplicated> {
+    let mut seen: FastMap<[u32; 3], ()> = FastMap::default();
+    let mut faces = Vec::with_capacity(mesh.n_faces());
+    for (t, f) in mesh.faces.iter().enumerate() {
+        let mut k = *f;
+        k.sort_unstable();
+        if seen.insert(k, ()).is_none() {
+            faces.push(t as u32);
+        }
+    }
+    let removed_faces = mesh.n_faces() - faces.len();
+    (removed_faces > 0).then(|| Deduplicated {
+        mesh: TriMesh::new(mesh.vertices.clone(), faces.iter().map(|&t| mesh.faces[t as usize]).collect()),
+        faces,
+        removed_faces,
+    })
 }
 
 /// Result of [`orient_coherently`].

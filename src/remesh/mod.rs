@@ -17,7 +17,7 @@ use crate::error::Error;
 use crate::cap::{stereographic, CapMap, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
 use crate::mesh::geometry::triangle_area;
-use crate::mesh::repair::{keep_main_component, orient_coherently, split_pinched_vertices, MainComponent};
+use crate::mesh::repair::{keep_main_component, orient_coherently, remove_duplicate_faces, split_pinched_vertices, MainComponent};
 use crate::mesh::{MeshError, SurfaceKind, TriMesh};
 use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
@@ -200,6 +200,8 @@ pub struct RemeshReport {
     /// Input faces flipped to agree with their neighbours ([`orient_coherently`]; 0 for a
     /// coherently oriented input).
     pub reoriented_faces: usize,
+    /// Input faces dropped as repeats of an earlier face ([`remove_duplicate_faces`]).
+    pub duplicate_faces: usize,
     /// Pieces of the input dropped besides the largest (at most [`DROPPED_AREA_SHARE`] of
     /// the area, [`keep_main_component`]); the metrics are against the piece kept.
     pub dropped_components: usize,
@@ -294,26 +296,35 @@ fn other_end(map: &CapMap) -> Option<PunctureEnd> {
 /// two ends' search maps often tie, and the finished maps then differ near the puncture
 /// (docs/method.md section 18, "Finely triangulated inputs").
 ///
-/// Three repairs are made when the input needs them, each reported: faces wound against
-/// their neighbours are flipped ([`orient_coherently`]; each piece keeps the orientation of
-/// most of its faces), a vertex where the surface touches itself is split, one per fan
-/// ([`split_pinched_vertices`]; the faces keep their order), and of several pieces the
-/// largest is remeshed when the others hold at most [`DROPPED_AREA_SHARE`] of the area
-/// ([`keep_main_component`]: marching cubes leaves such specks). Surface points name the
-/// input's faces, with weights in the order of the input's corners, either way.
+/// Four repairs are made when the input needs them, each reported: repeated faces are
+/// dropped ([`remove_duplicate_faces`]), faces wound against their neighbours are flipped
+/// ([`orient_coherently`]; each piece keeps the orientation of most of its faces), a vertex
+/// where the surface touches itself is split, one per fan ([`split_pinched_vertices`]; the
+/// faces keep their order), and of several pieces the largest is remeshed when the others
+/// hold at most [`DROPPED_AREA_SHARE`] of the area ([`keep_main_component`]: marching cubes
+/// leaves such specks). Surface points name the input's faces, with weights in the order of
+/// the input's corners, either way.
 fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let mut work = std::borrow::Cow::Borrowed(mesh);
-    let (mut split, mut kept): (Option<usize>, Option<MainComponent>) = (None, None);
+    let (mut split, mut kept, mut deduplicated): (Option<usize>, Option<MainComponent>, Option<usize>) = (None, None, None);
+    // The input face of each face of `work`, once a repair has renumbered them.
+    let mut to_input: Option<Vec<u32>> = None;
+    let input_face = |to_input: &Option<Vec<u32>>, t: usize| to_input.as_ref().map_or(t, |m| m[t] as usize);
     // The input faces flipped, and how many.
     let mut flipped: Option<(Vec<bool>, usize)> = None;
     loop {
         match remesh_manifold(&work, options, progress, locate) {
+            Err(Error::Mesh(MeshError::DuplicateFace { .. })) if deduplicated.is_none() => {
+                let Some(d) = remove_duplicate_faces(&work) else { return Err(Error::Internal("duplicate faces reported but none found".into())) };
+                to_input = Some(d.faces.iter().map(|&t| input_face(&to_input, t as usize) as u32).collect());
+                deduplicated = Some(d.removed_faces);
+                work = std::borrow::Cow::Owned(d.mesh);
+            }
             Err(Error::Mesh(e @ MeshError::InconsistentOrientation { .. })) if flipped.is_none() => {
                 let Some(o) = orient_coherently(&work) else { return Err(Error::Mesh(e)) };
-                // Faces keep their order through a split; a dropped speck renumbers them.
                 let mut by_input = vec![false; mesh.n_faces()];
                 for (t, _) in o.flipped.iter().enumerate().filter(|(_, &f)| f) {
-                    by_input[kept.as_ref().map_or(t, |m| m.faces[t] as usize)] = true;
+                    by_input[input_face(&to_input, t)] = true;
                 }
                 flipped = Some((by_input, o.flipped_faces));
                 work = std::borrow::Cow::Owned(o.mesh);
@@ -326,6 +337,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
             Err(Error::Mesh(e @ MeshError::SeveralComponents { .. })) if kept.is_none() => {
                 match keep_main_component(&work) {
                     Some(mut main) if main.dropped_area_share <= DROPPED_AREA_SHARE => {
+                        to_input = Some(main.faces.iter().map(|&t| input_face(&to_input, t as usize) as u32).collect());
                         work = std::borrow::Cow::Owned(std::mem::take(&mut main.mesh));
                         kept = Some(main);
                     }
@@ -334,12 +346,13 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
             }
             Ok((out, mut report, mut points)) => {
                 report.split_vertices = split.unwrap_or(0);
+                report.duplicate_faces = deduplicated.unwrap_or(0);
                 if let Some(main) = &kept {
                     report.dropped_components = main.dropped_components;
                     report.dropped_area_share = main.dropped_area_share;
-                    for p in &mut points {
-                        p.face = main.faces[p.face] as usize;
-                    }
+                }
+                for p in &mut points {
+                    p.face = input_face(&to_input, p.face);
                 }
                 if let Some((by_input, count)) = &flipped {
                     report.reoriented_faces = *count;
@@ -418,6 +431,7 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
         metrics_seconds,
         split_vertices: 0,
         reoriented_faces: 0,
+        duplicate_faces: 0,
         dropped_components: 0,
         dropped_area_share: 0.0,
     };

@@ -48,6 +48,7 @@ struct Flat<'a> {
     write_seconds: f64,
     split_vertices: usize,
     reoriented_faces: usize,
+    duplicate_faces: usize,
     dropped_components: usize,
     dropped_area_share: f64,
     quality: capmesh::MapQuality,
@@ -122,6 +123,10 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     if rep.split_vertices > 0 {
         outln!("{}", crate::param_cmd::pinch_note(&input, rep.split_vertices));
     }
+    if rep.duplicate_faces > 0 {
+        let n = rep.duplicate_faces;
+        outln!("{}: {n} face{} repeated an earlier face's vertices: dropped", input.display(), if n == 1 { "" } else { "s" });
+    }
     if rep.reoriented_faces > 0 {
         let n = rep.reoriented_faces;
         outln!("{}: {n} face{} wound against {} neighbours: flipped to agree with them", input.display(), if n == 1 { "" } else { "s" }, if n == 1 { "its" } else { "their" });
@@ -151,6 +156,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
                 write_seconds,
                 split_vertices: rep.split_vertices,
                 reoriented_faces: rep.reoriented_faces,
+                duplicate_faces: rep.duplicate_faces,
                 dropped_components: rep.dropped_components,
                 dropped_area_share: rep.dropped_area_share,
                 quality: rep.param.quality,
