@@ -145,6 +145,16 @@ fn a_second_surface_of_its_own_size_is_still_an_error() {
     assert!(err.to_string().contains("2 connected components"), "{err}");
 }
 
+/// Each remesh vertex is its surface point: the weights times the corners of `input`'s face.
+fn assert_points_on_input_corners(input: &TriMesh, out: &TriMesh, points: &[capmesh::cap::SurfacePoint]) {
+    let tolerance = 1e-9 * input.bounding_box_diagonal();
+    for (p, x) in points.iter().zip(&out.vertices) {
+        let f = input.faces[p.face];
+        let q: [f64; 3] = std::array::from_fn(|k| (0..3).map(|c| p.barycentric[c] * input.vertices[f[c] as usize][k]).sum());
+        assert!((0..3).all(|k| (q[k] - x[k]).abs() <= tolerance), "{q:?} against {x:?}");
+    }
+}
+
 /// The bundled closed hippocampus with every seventh face wound the other way (its second and
 /// third corners swapped, so that the repair gives back the very faces).
 fn misoriented_hippocampus() -> (TriMesh, TriMesh, usize) {
@@ -189,11 +199,7 @@ fn remesh_flips_misoriented_faces_and_reports_them() {
     let (alone, _) = remesh(&good, &options, &NoProgress).unwrap();
     assert_eq!(out, alone);
     // Surface points weigh the input's own corners, in its order.
-    for (p, x) in points.iter().zip(&out.vertices) {
-        let f = bad.faces[p.face];
-        let q: [f64; 3] = std::array::from_fn(|k| (0..3).map(|c| p.barycentric[c] * bad.vertices[f[c] as usize][k]).sum());
-        assert!((0..3).all(|k| (q[k] - x[k]).abs() <= 1e-9 * good.bounding_box_diagonal()), "{q:?} against {x:?}");
-    }
+    assert_points_on_input_corners(&bad, &out, &points);
     // The command line says so and writes it into the report.
     let dir = common::TempDir::new("misoriented");
     let input = dir.path("hippocampus_misoriented.obj");
@@ -225,9 +231,5 @@ fn repeated_faces_are_dropped_by_remesh() {
     let (alone, _) = remesh(&good, &options, &NoProgress).unwrap();
     assert_eq!(out, alone);
     // Surface points name the faces of the input as given (with its repeats).
-    for (p, x) in points.iter().zip(&out.vertices) {
-        let f = bad.faces[p.face];
-        let q: [f64; 3] = std::array::from_fn(|k| (0..3).map(|c| p.barycentric[c] * bad.vertices[f[c] as usize][k]).sum());
-        assert!((0..3).all(|k| (q[k] - x[k]).abs() <= 1e-9 * good.bounding_box_diagonal()), "{q:?} against {x:?}");
-    }
+    assert_points_on_input_corners(&bad, &out, &points);
 }
