@@ -210,6 +210,12 @@ fn remesh_flips_misoriented_faces_and_reports_them() {
     assert!(String::from_utf8_lossy(&run.stdout).contains(&format!("{flipped} faces wound against their neighbours")), "{}", String::from_utf8_lossy(&run.stdout));
     let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(json["reoriented_faces"], flipped);
+    // `capmesh param` maps the repaired input and writes its faces.
+    let out = dir.path("cap.obj");
+    let run = common::cli::capmesh().arg("param").arg(&input).args(["--quiet", "-o"]).arg(&out).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(String::from_utf8_lossy(&run.stdout).contains("wound against their neighbours"), "{}", String::from_utf8_lossy(&run.stdout));
+    assert_eq!(read_mesh(&out).unwrap().faces, good.faces);
 }
 
 #[test]

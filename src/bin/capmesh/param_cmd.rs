@@ -35,9 +35,17 @@ pub fn run(args: ParamArgs) -> Result<(), Failure> {
     let mut options = ParamOptions::default().with_domain(domain);
     map.apply(&mut options);
     let mut cap = parameterize(&m, &options, &bar);
-    // A pinched input is mapped with those vertices split (the library refuses it).
-    if matches!(cap, Err(capmesh::Error::Mesh(capmesh::mesh::MeshError::NonManifoldVertex { .. }))) {
-        m = split_pinches(&input, m);
+    // A pinched input is mapped with those vertices split, repeated faces dropped and stray
+    // faces flipped (the library refuses such inputs); each repair at most once.
+    let mut repaired = Vec::new();
+    while let Err(capmesh::Error::Mesh(e)) = &cap {
+        let kind = std::mem::discriminant(e);
+        if repaired.contains(&kind) {
+            break;
+        }
+        repaired.push(kind);
+        let Some(fixed) = repair(&input, &m, e) else { break };
+        m = fixed;
         cap = parameterize(&m, &options, &bar);
     }
     let cap = cap.map_err(|e| failure::of_pipeline("param", &input, bar.stage(), e))?;
@@ -68,6 +76,36 @@ pub fn run(args: ParamArgs) -> Result<(), Failure> {
         figures_arg::done(capmesh::figures::param_figures(&dir, &figures_arg::name(&input), &m, &cap, &Default::default()))?;
     }
     refuse_poor(&input, r, map.allow_poor_map)
+}
+
+/// The input repaired for `error`, said on standard output: pinched vertices split, repeated
+/// faces dropped, faces wound against their neighbours flipped (the outputs keep the input's
+/// vertices in their order); `None` for any other error, or when the repair does not apply.
+fn repair(input: &Path, m: &capmesh::TriMesh, error: &capmesh::mesh::MeshError) -> Option<capmesh::TriMesh> {
+    use capmesh::mesh::{repair, MeshError};
+    match error {
+        MeshError::NonManifoldVertex { .. } => Some(split_pinches(input, m.clone())),
+        MeshError::DuplicateFace { .. } => repair::remove_duplicate_faces(m).map(|d| {
+            let _ = crate::write_line(format_args!("{}", duplicate_note(input, d.removed_faces)));
+            d.mesh
+        }),
+        MeshError::InconsistentOrientation { .. } => repair::orient_coherently(m).map(|o| {
+            let _ = crate::write_line(format_args!("{}", reorient_note(input, o.flipped_faces)));
+            o.mesh
+        }),
+        _ => None,
+    }
+}
+
+/// What the commands say when they drop `n` repeated faces.
+pub(crate) fn duplicate_note(input: &Path, n: usize) -> String {
+    format!("{}: {n} face{} repeated an earlier face's vertices: dropped", input.display(), if n == 1 { "" } else { "s" })
+}
+
+/// What the commands say when they flip `n` faces wound against their neighbours.
+pub(crate) fn reorient_note(input: &Path, n: usize) -> String {
+    let (s, their) = if n == 1 { ("", "its") } else { ("s", "their") };
+    format!("{}: {n} face{s} wound against {their} neighbours: flipped to agree with them", input.display())
 }
 
 /// The pinched input with those vertices split, one per fan (the outputs then have the

@@ -124,12 +124,10 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         outln!("{}", crate::param_cmd::pinch_note(&input, rep.split_vertices));
     }
     if rep.duplicate_faces > 0 {
-        let n = rep.duplicate_faces;
-        outln!("{}: {n} face{} repeated an earlier face's vertices: dropped", input.display(), if n == 1 { "" } else { "s" });
+        outln!("{}", crate::param_cmd::duplicate_note(&input, rep.duplicate_faces));
     }
     if rep.reoriented_faces > 0 {
-        let n = rep.reoriented_faces;
-        outln!("{}: {n} face{} wound against {} neighbours: flipped to agree with them", input.display(), if n == 1 { "" } else { "s" }, if n == 1 { "its" } else { "their" });
+        outln!("{}", crate::param_cmd::reorient_note(&input, rep.reoriented_faces));
     }
     warn_if_poor(&input, &rep.param);
     if rep.quality.zero_area_faces > 0 {
