@@ -216,6 +216,10 @@ fn remesh_flips_misoriented_faces_and_reports_them() {
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     assert!(String::from_utf8_lossy(&run.stdout).contains("wound against their neighbours"), "{}", String::from_utf8_lossy(&run.stdout));
     assert_eq!(read_mesh(&out).unwrap().faces, good.faces);
+    // `capmesh check` counts them and passes.
+    let check = common::cli::capmesh().arg("check").arg(&input).output().unwrap();
+    let text = String::from_utf8_lossy(&check.stdout);
+    assert!(check.status.success() && text.contains(&format!("misoriented faces    flipped, {flipped}")) && text.contains("closed genus-0"), "{text}");
 }
 
 #[test]

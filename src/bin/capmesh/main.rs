@@ -346,17 +346,33 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Check { input, json } => {
-            // Pinched vertices are split as `param` and `remesh` split them.
-            let m = read(&input)?;
-            let (m, split_vertices, summary) = match mesh::inspect(&m) {
-                Err(mesh::MeshError::NonManifoldVertex { .. }) => match mesh::repair::split_pinched_vertices(&m) {
-                    Ok(split) => {
-                        let summary = mesh::inspect(&split.mesh);
-                        (split.mesh, split.copy_of.len(), summary)
+            // Pinched vertices are split, repeated faces dropped and misoriented ones flipped
+            // as `param` and `remesh` repair them, each repair once.
+            let mut m = read(&input)?;
+            let (mut split_vertices, mut duplicate_faces, mut reoriented_faces) = (0, 0, 0);
+            let summary = loop {
+                let summary = mesh::inspect(&m);
+                let repaired = match &summary {
+                    Err(mesh::MeshError::NonManifoldVertex { .. }) if split_vertices == 0 => {
+                        mesh::repair::split_pinched_vertices(&m).ok().filter(|s| !s.copy_of.is_empty()).map(|s| {
+                            split_vertices = s.copy_of.len();
+                            s.mesh
+                        })
                     }
-                    Err(e) => (m, 0, Err(e)),
-                },
-                summary => (m, 0, summary),
+                    Err(mesh::MeshError::DuplicateFace { .. }) if duplicate_faces == 0 => mesh::repair::remove_duplicate_faces(&m).map(|d| {
+                        duplicate_faces = d.removed_faces;
+                        d.mesh
+                    }),
+                    Err(mesh::MeshError::InconsistentOrientation { .. }) if reoriented_faces == 0 => mesh::repair::orient_coherently(&m).map(|o| {
+                        reoriented_faces = o.flipped_faces;
+                        o.mesh
+                    }),
+                    _ => None,
+                };
+                match repaired {
+                    Some(r) => m = r,
+                    None => break summary,
+                }
             };
             let summary = summary.map_err(|e| format!("{}: {e}", input.display()))?;
             if json {
@@ -365,8 +381,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     #[serde(flatten)]
                     summary: &'a mesh::MeshSummary,
                     split_vertices: usize,
+                    duplicate_faces: usize,
+                    reoriented_faces: usize,
                 }
-                outln!("{}", serde_json::to_string_pretty(&Checked { summary: &summary, split_vertices }).map_err(|e| e.to_string())?);
+                let checked = Checked { summary: &summary, split_vertices, duplicate_faces, reoriented_faces };
+                outln!("{}", serde_json::to_string_pretty(&checked).map_err(|e| e.to_string())?);
             } else {
                 outln!("file                 {}", input.display());
                 outln!("vertices             {}", summary.n_vertices);
@@ -382,6 +401,12 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 outln!("coincident vertices  {}", summary.coincident_vertex_pairs);
                 if split_vertices > 0 {
                     outln!("pinched vertices     split, {split_vertices} copies (the surface touches itself there; param and remesh split them too)");
+                }
+                if duplicate_faces > 0 {
+                    outln!("repeated faces       dropped, {duplicate_faces} (param and remesh drop them too)");
+                }
+                if reoriented_faces > 0 {
+                    outln!("misoriented faces    flipped, {reoriented_faces} (wound against their neighbours; param and remesh flip them too)");
                 }
             }
             // The full validation names why the surface cannot be mapped.
