@@ -137,12 +137,24 @@ fn specks_beside_a_surface_are_dropped_and_reported() {
 }
 
 #[test]
-fn a_second_surface_of_its_own_size_is_still_an_error() {
+fn a_second_surface_of_its_own_size_is_an_error_unless_the_largest_piece_is_asked_for() {
     let bunny = read_mesh(&common::data("closed_bunny_npm.obj")).unwrap();
     let diagonal = bunny.bounding_box_diagonal();
     let (m, _) = bunny_with(&speck(0.2 * diagonal, [2.0 * diagonal, 0.0, 0.0]));
     let err = remesh(&m, &RemeshOptions::default(), &NoProgress).unwrap_err();
-    assert!(err.to_string().contains("2 connected components"), "{err}");
+    assert!(err.to_string().contains("2 connected components") && err.to_string().contains("--largest-piece"), "{err}");
+    // Asked for, the largest piece is remeshed alone, as it would be on its own.
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 2000 }).with_pieces(capmesh::Pieces::Largest);
+    let (out, rep) = remesh(&m, &options, &NoProgress).unwrap();
+    let main = capmesh::mesh::repair::keep_main_component(&m).unwrap();
+    assert!(rep.dropped_components == 1 && rep.dropped_area_share > capmesh::remesh::DROPPED_AREA_SHARE, "{rep:?}");
+    assert_eq!(out, remesh(&main.mesh, &options, &NoProgress).unwrap().0);
+    // The command line's --largest-piece.
+    let dir = common::TempDir::new("largest");
+    let input = dir.path("two.obj");
+    capmesh::io::write_mesh(&input, &m).unwrap();
+    let run = common::cli::capmesh().arg("remesh").arg(&input).args(["--faces", "2000", "--quiet", "--largest-piece", "-o"]).arg(dir.path("out.obj")).output().unwrap();
+    assert!(run.status.success() && String::from_utf8_lossy(&run.stdout).contains("remeshed the largest piece; dropped 1 other piece"), "{}{}", String::from_utf8_lossy(&run.stdout), String::from_utf8_lossy(&run.stderr));
 }
 
 /// Each remesh vertex is its surface point: the weights times the corners of `input`'s face.

@@ -242,5 +242,7 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         area_equalization: o.area_equalization as usize,
         optimize,
         shape,
+        // The C ABI keeps the default: specks dropped, larger pieces refused.
+        pieces: crate::remesh::Pieces::default(),
     })
 }

@@ -131,9 +131,9 @@ pub enum MeshError {
     /// The mesh is made of several separate pieces.
     #[error(
         "the mesh has {count} connected components, but capmesh maps one surface at a time \
-         (`remesh` drops pieces holding at most 1% of the area, not larger ones); split the \
-         components (MeshLab: 'Split in Connected Components') and keep one, or delete small \
-         pieces ('Remove Isolated pieces')"
+         (`remesh` drops pieces holding at most 1% of the area, and with --largest-piece any \
+         but the largest); split the components (MeshLab: 'Split in Connected Components') and \
+         keep one, or delete small pieces ('Remove Isolated pieces')"
     )]
     SeveralComponents {
         /// Number of components.

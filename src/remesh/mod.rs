@@ -121,6 +121,23 @@ pub struct RemeshOptions {
     pub optimize: Optimize,
     /// The shape stage's options.
     pub shape: shape::ShapeOptions,
+    /// What is done with an input in several pieces. Default [`Pieces::DropSpecks`].
+    pub pieces: Pieces,
+}
+
+/// What [`remesh`] does with an input made of several pieces (capmesh maps one surface at a
+/// time).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Pieces {
+    /// Remesh the piece of largest area when the others hold at most
+    /// [`DROPPED_AREA_SHARE`] of the area (the specks a segmentation leaves); refuse the input
+    /// otherwise. The default.
+    #[default]
+    DropSpecks,
+    /// Remesh the piece of largest area whatever the others hold (two lungs or hemispheres
+    /// in one file: the larger one), reported as for specks.
+    Largest,
 }
 
 /// Sweeps of the area equalization by default.
@@ -156,6 +173,12 @@ impl RemeshOptions {
         self.shape = shape;
         self
     }
+
+    /// Set what is done with an input in several pieces.
+    pub fn with_pieces(mut self, pieces: Pieces) -> Self {
+        self.pieces = pieces;
+        self
+    }
 }
 
 impl Default for RemeshOptions {
@@ -166,6 +189,7 @@ impl Default for RemeshOptions {
             area_equalization: DEFAULT_AREA_EQUALIZATION,
             optimize: Optimize::default(),
             shape: shape::ShapeOptions::default(),
+            pieces: Pieces::default(),
         }
     }
 }
@@ -302,7 +326,7 @@ fn other_end(map: &CapMap) -> Option<PunctureEnd> {
 /// where the surface touches itself is split, one per fan ([`split_pinched_vertices`]; the
 /// faces keep their order), and of several pieces the largest is remeshed when the others
 /// hold at most [`DROPPED_AREA_SHARE`] of the area ([`keep_main_component`]: marching cubes
-/// leaves such specks). Surface points name the input's faces, with weights in the order of
+/// leaves such specks), or whatever they hold with [`Pieces::Largest`]. Surface points name the input's faces, with weights in the order of
 /// the input's corners, either way.
 fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let mut work = std::borrow::Cow::Borrowed(mesh);
@@ -336,7 +360,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
             }
             Err(Error::Mesh(e @ MeshError::SeveralComponents { .. })) if kept.is_none() => {
                 match keep_main_component(&work) {
-                    Some(mut main) if main.dropped_area_share <= DROPPED_AREA_SHARE => {
+                    Some(mut main) if main.dropped_area_share <= DROPPED_AREA_SHARE || options.pieces == Pieces::Largest => {
                         to_input = Some(main.faces.iter().map(|&t| input_face(&to_input, t as usize) as u32).collect());
                         work = std::borrow::Cow::Owned(std::mem::take(&mut main.mesh));
                         kept = Some(main);

@@ -144,6 +144,10 @@ enum Command {
         /// collapses in the shape stage (they are on by default and give better angles).
         #[arg(long)]
         no_resample: bool,
+        /// Of an input in several pieces, remesh the largest whatever the others hold (by
+        /// default only specks of at most 1% of the area are dropped, larger pieces refused).
+        #[arg(long)]
+        largest_piece: bool,
         /// Face sizing: uniform (equal areas, the default) or curvature[=S] (smaller faces
         /// where the surface is curved, density 1 + S k L at the same face count; S = 3).
         #[arg(long, default_value = "uniform")]
@@ -313,7 +317,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let basis = basis.kind()?;
             shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, basis, groups, quiet: cli.quiet })
         }
-        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, sizing, figures, map } => {
+        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, largest_piece, sizing, figures, map } => {
             remesh_cmd::run(remesh_cmd::RemeshArgs {
                 input,
                 output,
@@ -329,6 +333,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 polish_iterations,
                 shape_weight,
                 no_resample,
+                largest_piece,
                 sizing,
                 figures,
                 map,

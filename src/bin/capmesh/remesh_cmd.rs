@@ -25,6 +25,7 @@ pub struct RemeshArgs {
     pub polish_iterations: usize,
     pub shape_weight: f64,
     pub no_resample: bool,
+    pub largest_piece: bool,
     pub sizing: capmesh::Sizing,
     pub figures: Option<PathBuf>,
     pub map: map_args::MapArgs,
@@ -75,6 +76,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         polish_iterations,
         shape_weight,
         no_resample,
+        largest_piece,
         sizing,
         figures,
         map,
@@ -93,6 +95,9 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
     let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing);
     let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape);
+    if largest_piece {
+        options = options.with_pieces(capmesh::Pieces::Largest);
+    }
     map.apply(&mut options.param);
     let (out, rep, points) = capmesh::remesh_located(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
     bar.finish();
