@@ -351,34 +351,20 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Check { input, json } => {
-            // Pinched vertices are split, repeated faces dropped and misoriented ones flipped
-            // as `param` and `remesh` repair them, each repair once.
+            // The repairs `param` and `remesh` make, each once, before counting.
             let mut m = read(&input)?;
-            let (mut split_vertices, mut duplicate_faces, mut reoriented_faces) = (0, 0, 0);
+            let mut done = Vec::new();
             let summary = loop {
                 let summary = mesh::inspect(&m);
-                let repaired = match &summary {
-                    Err(mesh::MeshError::NonManifoldVertex { .. }) if split_vertices == 0 => {
-                        mesh::repair::split_pinched_vertices(&m).ok().filter(|s| !s.copy_of.is_empty()).map(|s| {
-                            split_vertices = s.copy_of.len();
-                            s.mesh
-                        })
+                match summary.as_ref().err().and_then(|e| param_cmd::repair(&m, e, &done)) {
+                    Some((fixed, r)) => {
+                        done.push(r);
+                        m = fixed;
                     }
-                    Err(mesh::MeshError::DuplicateFace { .. }) if duplicate_faces == 0 => mesh::repair::remove_duplicate_faces(&m).map(|d| {
-                        duplicate_faces = d.removed_faces;
-                        d.mesh
-                    }),
-                    Err(mesh::MeshError::InconsistentOrientation { .. }) if reoriented_faces == 0 => mesh::repair::orient_coherently(&m).map(|o| {
-                        reoriented_faces = o.flipped_faces;
-                        o.mesh
-                    }),
-                    _ => None,
-                };
-                match repaired {
-                    Some(r) => m = r,
                     None => break summary,
                 }
             };
+            let (split_vertices, duplicate_faces, reoriented_faces) = param_cmd::Repair::counts(&done);
             let summary = summary.map_err(|e| format!("{}: {e}", input.display()))?;
             if json {
                 #[derive(serde::Serialize)]

@@ -37,14 +37,11 @@ pub fn run(args: ParamArgs) -> Result<(), Failure> {
     let mut cap = parameterize(&m, &options, &bar);
     // A pinched input is mapped with those vertices split, repeated faces dropped and stray
     // faces flipped (the library refuses such inputs); each repair at most once.
-    let mut repaired = Vec::new();
+    let mut done = Vec::new();
     while let Err(capmesh::Error::Mesh(e)) = &cap {
-        let kind = std::mem::discriminant(e);
-        if repaired.contains(&kind) {
-            break;
-        }
-        repaired.push(kind);
-        let Some(fixed) = repair(&input, &m, e) else { break };
+        let Some((fixed, r)) = repair(&m, e, &done) else { break };
+        outln!("{}", r.note(&input));
+        done.push(r);
         m = fixed;
         cap = parameterize(&m, &options, &bar);
     }
@@ -78,23 +75,55 @@ pub fn run(args: ParamArgs) -> Result<(), Failure> {
     refuse_poor(&input, r, map.allow_poor_map)
 }
 
-/// The input repaired for `error`, said on standard output: pinched vertices split, repeated
-/// faces dropped, faces wound against their neighbours flipped (the outputs keep the input's
-/// vertices in their order); `None` for any other error, or when the repair does not apply.
-fn repair(input: &Path, m: &capmesh::TriMesh, error: &capmesh::mesh::MeshError) -> Option<capmesh::TriMesh> {
-    use capmesh::mesh::{repair, MeshError};
-    match error {
-        MeshError::NonManifoldVertex { .. } => Some(split_pinches(input, m.clone())),
-        MeshError::DuplicateFace { .. } => repair::remove_duplicate_faces(m).map(|d| {
-            let _ = crate::write_line(format_args!("{}", duplicate_note(input, d.removed_faces)));
-            d.mesh
-        }),
-        MeshError::InconsistentOrientation { .. } => repair::orient_coherently(m).map(|o| {
-            let _ = crate::write_line(format_args!("{}", reorient_note(input, o.flipped_faces)));
-            o.mesh
-        }),
-        _ => None,
+/// A repair the commands make instead of refusing an input, and its count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Repair {
+    /// Pinched vertices split: copies made.
+    Split(usize),
+    /// Repeated faces dropped.
+    Deduplicated(usize),
+    /// Faces flipped to agree with their neighbours.
+    Reoriented(usize),
+}
+
+impl Repair {
+    /// Vertices split, faces dropped and faces flipped by `done`.
+    pub(crate) fn counts(done: &[Repair]) -> (usize, usize, usize) {
+        done.iter().fold((0, 0, 0), |(s, d, o), r| match *r {
+            Repair::Split(n) => (s + n, d, o),
+            Repair::Deduplicated(n) => (s, d + n, o),
+            Repair::Reoriented(n) => (s, d, o + n),
+        })
     }
+
+    /// What the commands say about it.
+    pub(crate) fn note(self, input: &Path) -> String {
+        match self {
+            Repair::Split(n) => pinch_note(input, n),
+            Repair::Deduplicated(n) => duplicate_note(input, n),
+            Repair::Reoriented(n) => reorient_note(input, n),
+        }
+    }
+}
+
+/// `m` repaired for `error` unless `done` holds that kind of repair already: pinched
+/// vertices split (the input's vertices keep their numbers, the copies come after them),
+/// repeated faces dropped, faces wound against their neighbours flipped; `None` for any
+/// other error, or when the repair does not apply. `param`, `remesh` (the library's own
+/// loop) and `check` make the same repairs.
+pub(crate) fn repair(m: &capmesh::TriMesh, error: &capmesh::mesh::MeshError, done: &[Repair]) -> Option<(capmesh::TriMesh, Repair)> {
+    use capmesh::mesh::{repair, MeshError};
+    let same = |r: &Repair| done.iter().any(|d| std::mem::discriminant(d) == std::mem::discriminant(r));
+    let (mesh, r) = match error {
+        MeshError::NonManifoldVertex { .. } => repair::split_pinched_vertices(m).ok().filter(|s| !s.copy_of.is_empty()).map(|s| {
+            let n = s.copy_of.len();
+            (s.mesh, Repair::Split(n))
+        })?,
+        MeshError::DuplicateFace { .. } => repair::remove_duplicate_faces(m).map(|d| (d.mesh, Repair::Deduplicated(d.removed_faces)))?,
+        MeshError::InconsistentOrientation { .. } => repair::orient_coherently(m).map(|o| (o.mesh, Repair::Reoriented(o.flipped_faces)))?,
+        _ => return None,
+    };
+    (!same(&r)).then_some((mesh, r))
 }
 
 /// What the commands say when they drop `n` repeated faces.
@@ -106,19 +135,6 @@ pub(crate) fn duplicate_note(input: &Path, n: usize) -> String {
 pub(crate) fn reorient_note(input: &Path, n: usize) -> String {
     let (s, their) = if n == 1 { ("", "its") } else { ("s", "their") };
     format!("{}: {n} face{s} wound against {their} neighbours: flipped to agree with them", input.display())
-}
-
-/// The pinched input with those vertices split, one per fan (the outputs then have the
-/// input's vertices in their order and the copies after them), said on standard output; the
-/// input itself when the split fails (the parameterization then names why).
-pub(crate) fn split_pinches(input: &Path, m: capmesh::TriMesh) -> capmesh::TriMesh {
-    match capmesh::mesh::repair::split_pinched_vertices(&m) {
-        Ok(split) if !split.copy_of.is_empty() => {
-            let _ = crate::write_line(format_args!("{}", pinch_note(input, split.copy_of.len())));
-            split.mesh
-        }
-        _ => m,
-    }
 }
 
 /// What the commands say when they split pinched vertices.
