@@ -1,9 +1,12 @@
-//! The value buffer of the largest sparse factorization, handed from one solver to the next
-//! (ours; docs/method.md section 20, "Large meshes"): a large factor's buffer written for the
-//! first time can cost more than the factorization on a virtual machine (every fresh page
-//! faults through to the host), and the
-//! parameterization factors such systems one after another (the flattening's, then the
-//! transport's). [`super::SpdSolver`] takes and leaves it; the parameterization frees it.
+//! Buffers kept between sparse factorizations (ours; docs/method.md section 20, "Large
+//! meshes"): a large buffer written for the first time can cost more than the factorization
+//! on a virtual machine (every fresh page faults through to the host). The value buffer of the
+//! largest factorization is handed from one solver to the next (the parameterization factors
+//! such systems one after another: the flattening's, then the transport's;
+//! [`super::SpdSolver`] takes and leaves it, the parameterization frees it), and each solver
+//! keeps its factorization work space ([`Scratch`]).
+
+use std::mem::MaybeUninit;
 
 /// Factor entries from which a factorization's value buffer is kept for the next one when its
 /// solver is dropped ([`release_spare`]).
@@ -49,6 +52,30 @@ pub fn release_spare() {
     }
 }
 
+/// The numeric factorization's work space, kept between factorizations: on the 776k brain it
+/// is about 90 MB a factorization, above glibc's largest threshold for reusing freed memory,
+/// so each factorization wrote fresh pages. Clones start empty.
+#[derive(Default)]
+pub(super) struct Scratch(Vec<MaybeUninit<u8>>);
+
+impl Clone for Scratch {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl Scratch {
+    /// At least `bytes` bytes of work space (an error when they cannot be allocated).
+    pub(super) fn at_least(&mut self, bytes: usize) -> Result<&mut [MaybeUninit<u8>], std::collections::TryReserveError> {
+        if self.0.len() < bytes {
+            self.0 = Vec::new();
+            self.0.try_reserve_exact(bytes)?;
+            self.0.resize_with(bytes, MaybeUninit::uninit);
+        }
+        Ok(&mut self.0)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -75,5 +102,4 @@ mod tests {
         offer_spare(&mut small);
         assert_eq!(small.len(), 10);
     }
-
 }

@@ -12,10 +12,9 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, Symbolic
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::perm::PermRef;
 use faer::{Conj, Mat, Par, Side};
-use super::factor_buffer::{offer_spare, take_spare};
+use super::factor_buffer::{offer_spare, take_spare, Scratch};
 use super::nested_dissection::Dissection;
 use rayon::prelude::*;
-use std::mem::MaybeUninit;
 use std::sync::Arc;
 
 /// Errors of the sparse direct solvers.
@@ -318,30 +317,6 @@ impl SpdSolver {
 /// number of threads (faer splits the dense updates' rows and columns among the threads, not
 /// their sums; tested).
 pub const PARALLEL_FACTOR_ENTRIES: usize = 1 << 24;
-
-/// The numeric factorization's work space, kept between factorizations: on the 776k brain it
-/// is about 90 MB a factorization, above glibc's largest threshold for reusing freed memory,
-/// so each factorization wrote fresh pages. Clones start empty.
-#[derive(Default)]
-struct Scratch(Vec<MaybeUninit<u8>>);
-
-impl Clone for Scratch {
-    fn clone(&self) -> Self {
-        Self::default()
-    }
-}
-
-impl Scratch {
-    /// At least `bytes` bytes of work space (an error when they cannot be allocated).
-    fn at_least(&mut self, bytes: usize) -> Result<&mut [MaybeUninit<u8>], std::collections::TryReserveError> {
-        if self.0.len() < bytes {
-            self.0 = Vec::new();
-            self.0.try_reserve_exact(bytes)?;
-            self.0.resize_with(bytes, MaybeUninit::uninit);
-        }
-        Ok(&mut self.0)
-    }
-}
 
 impl Drop for SpdSolver {
     fn drop(&mut self) {

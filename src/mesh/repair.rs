@@ -296,11 +296,10 @@ pub struct Reoriented {
 /// mesh cannot be oriented (an edge with more than two faces, a one-sided piece such as a
 /// Moebius strip, an out-of-range index or a repeated vertex): validation then says why.
 pub fn orient_coherently(mesh: &TriMesh) -> Option<Reoriented> {
-    let n = mesh.n_vertices();
-    let faces = &mesh.faces;
-    if faces.iter().any(|f| f.iter().any(|&v| v as usize >= n) || f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) {
+    if check_indices(mesh).is_err() || check_degenerate(mesh).is_err() {
         return None;
     }
+    let faces = &mesh.faces;
     const NO_FACE: u32 = u32::MAX;
     let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
     let mut edges: FastMap<u64, [u32; 2]> = FastMap::default();
