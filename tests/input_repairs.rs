@@ -255,3 +255,40 @@ fn repeated_faces_are_dropped_by_remesh() {
     // Surface points name the faces of the input as given (with its repeats).
     assert_points_on_input_corners(&bad, &out, &points);
 }
+
+/// `repair_for` (the one dispatch of remesh, param and check) picks the repair that mends
+/// each validation error, and none for errors no repair mends.
+#[test]
+fn each_validation_error_gets_its_repair() {
+    use capmesh::mesh::repair::{repair_for, Repaired};
+    let (good, bad, flipped) = misoriented_hippocampus();
+    let e = validate(&bad).unwrap_err();
+    match repair_for(&bad, &e).unwrap() {
+        Some(Repaired::Reoriented(o)) => assert_eq!((o.flipped_faces, &o.mesh), (flipped, &good)),
+        other => panic!("misoriented faces got {other:?}"),
+    }
+    let mut repeated = good.clone();
+    repeated.faces.push(good.faces[5]);
+    let e = validate(&repeated).unwrap_err();
+    match repair_for(&repeated, &e).unwrap() {
+        Some(Repaired::Deduplicated(d)) => assert_eq!((d.removed_faces, &d.mesh), (1, &good)),
+        other => panic!("a repeated face got {other:?}"),
+    }
+    let pinched = pinched_hippocampus();
+    let e = validate(&pinched).unwrap_err();
+    assert!(matches!(e, MeshError::NonManifoldVertex { .. }), "{e}");
+    match repair_for(&pinched, &e).unwrap() {
+        Some(Repaired::Split(s)) => {
+            assert!(!s.copy_of.is_empty());
+            assert_eq!(validate(&s.mesh).unwrap().0, SurfaceKind::ClosedSphere);
+        }
+        other => panic!("a pinched vertex got {other:?}"),
+    }
+    // An error no repair mends, and a repair with nothing to do, leave the error standing.
+    let mut fin = good.clone();
+    let [a, b, _] = good.faces[0];
+    fin.faces.push([a, b, good.faces[good.faces.len() / 2][0]]);
+    let e = validate(&fin).unwrap_err();
+    assert!(repair_for(&fin, &e).unwrap().is_none(), "{e}");
+    assert!(repair_for(&good, &MeshError::DuplicateFace { face: 1, first: 0 }).is_ok_and(|r| r.is_none()));
+}

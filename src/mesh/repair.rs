@@ -245,6 +245,32 @@ pub fn split_pinched_vertices(mesh: &TriMesh) -> Result<Split, MeshError> {
     Ok(Split { mesh: TriMesh::new(vertices, faces), copy_of })
 }
 
+/// A repair made for a validation error by [`repair_for`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum Repaired {
+    /// Pinched vertices split ([`split_pinched_vertices`]).
+    Split(Split),
+    /// Repeated faces dropped ([`remove_duplicate_faces`]).
+    Deduplicated(Deduplicated),
+    /// Faces flipped to agree with their neighbours ([`orient_coherently`]).
+    Reoriented(Reoriented),
+}
+
+/// The repair that mends what `error` (from [`crate::mesh::validate()`] of `mesh`) refuses, as
+/// `param`, `remesh` and `check` make it: pinched vertices split
+/// ([`MeshError::NonManifoldVertex`]), repeated faces dropped ([`MeshError::DuplicateFace`]),
+/// faces wound against their neighbours flipped ([`MeshError::InconsistentOrientation`]).
+/// `Ok(None)` for any other error or when the repair finds nothing to do (the error stands);
+/// `Err` when splitting meets a worse defect (a non-manifold edge), which it names.
+pub fn repair_for(mesh: &TriMesh, error: &MeshError) -> Result<Option<Repaired>, MeshError> {
+    Ok(match error {
+        MeshError::NonManifoldVertex { .. } => Some(split_pinched_vertices(mesh)?).filter(|s| !s.copy_of.is_empty()).map(Repaired::Split),
+        MeshError::DuplicateFace { .. } => remove_duplicate_faces(mesh).map(Repaired::Deduplicated),
+        MeshError::InconsistentOrientation { .. } => orient_coherently(mesh).map(Repaired::Reoriented),
+        _ => None,
+    })
+}
+
 /// Result of [`remove_duplicate_faces`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Deduplicated {

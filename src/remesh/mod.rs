@@ -17,7 +17,7 @@ use crate::error::Error;
 use crate::cap::{stereographic, CapMap, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
 use crate::mesh::geometry::triangle_area;
-use crate::mesh::repair::{keep_main_component, orient_coherently, remove_duplicate_faces, split_pinched_vertices, MainComponent};
+use crate::mesh::repair::{keep_main_component, repair_for, MainComponent, Repaired};
 use crate::mesh::{MeshError, SurfaceKind, TriMesh};
 use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
@@ -338,25 +338,35 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     let mut flipped: Option<(Vec<bool>, usize)> = None;
     loop {
         match remesh_manifold(&work, options, progress, locate) {
-            Err(Error::Mesh(MeshError::DuplicateFace { .. })) if deduplicated.is_none() => {
-                let Some(d) = remove_duplicate_faces(&work) else { return Err(Error::Internal("duplicate faces reported but none found".into())) };
-                to_input = Some(d.faces.iter().map(|&t| input_face(&to_input, t as usize) as u32).collect());
-                deduplicated = Some(d.removed_faces);
-                work = std::borrow::Cow::Owned(d.mesh);
-            }
-            Err(Error::Mesh(e @ MeshError::InconsistentOrientation { .. })) if flipped.is_none() => {
-                let Some(o) = orient_coherently(&work) else { return Err(Error::Mesh(e)) };
-                let mut by_input = vec![false; mesh.n_faces()];
-                for (t, _) in o.flipped.iter().enumerate().filter(|(_, &f)| f) {
-                    by_input[input_face(&to_input, t)] = true;
+            // Each repair once (`mesh::repair::repair_for`, as the CLI's param and check).
+            Err(Error::Mesh(e))
+                if match e {
+                    MeshError::DuplicateFace { .. } => deduplicated.is_none(),
+                    MeshError::InconsistentOrientation { .. } => flipped.is_none(),
+                    MeshError::NonManifoldVertex { .. } => split.is_none(),
+                    _ => false,
+                } =>
+            {
+                match repair_for(&work, &e)? {
+                    Some(Repaired::Deduplicated(d)) => {
+                        to_input = Some(d.faces.iter().map(|&t| input_face(&to_input, t as usize) as u32).collect());
+                        deduplicated = Some(d.removed_faces);
+                        work = std::borrow::Cow::Owned(d.mesh);
+                    }
+                    Some(Repaired::Reoriented(o)) => {
+                        let mut by_input = vec![false; mesh.n_faces()];
+                        for (t, _) in o.flipped.iter().enumerate().filter(|(_, &f)| f) {
+                            by_input[input_face(&to_input, t)] = true;
+                        }
+                        flipped = Some((by_input, o.flipped_faces));
+                        work = std::borrow::Cow::Owned(o.mesh);
+                    }
+                    Some(Repaired::Split(s)) => {
+                        split = Some(s.copy_of.len());
+                        work = std::borrow::Cow::Owned(s.mesh);
+                    }
+                    None => return Err(Error::Mesh(e)),
                 }
-                flipped = Some((by_input, o.flipped_faces));
-                work = std::borrow::Cow::Owned(o.mesh);
-            }
-            Err(Error::Mesh(MeshError::NonManifoldVertex { .. })) if split.is_none() => {
-                let s = split_pinched_vertices(&work)?;
-                split = Some(s.copy_of.len());
-                work = std::borrow::Cow::Owned(s.mesh);
             }
             Err(Error::Mesh(e @ MeshError::SeveralComponents { .. })) if kept.is_none() => {
                 match keep_main_component(&work) {

@@ -106,22 +106,22 @@ impl Repair {
     }
 }
 
-/// `m` repaired for `error` unless `done` holds that kind of repair already: pinched
-/// vertices split (the input's vertices keep their numbers, the copies come after them),
-/// repeated faces dropped, faces wound against their neighbours flipped; `None` for any
-/// other error, or when the repair does not apply. `param`, `remesh` (the library's own
-/// loop) and `check` make the same repairs.
+/// `m` repaired for `error` by `capmesh::mesh::repair::repair_for` (which the library's
+/// remesh calls too) unless `done` holds that kind of repair already: pinched vertices split
+/// (the input's vertices keep their numbers, the copies come after them), repeated faces
+/// dropped, faces wound against their neighbours flipped; `None` for any other error, or
+/// when the repair does not apply.
 pub(crate) fn repair(m: &capmesh::TriMesh, error: &capmesh::mesh::MeshError, done: &[Repair]) -> Option<(capmesh::TriMesh, Repair)> {
-    use capmesh::mesh::{repair, MeshError};
+    use capmesh::mesh::repair::{repair_for, Repaired};
     let same = |r: &Repair| done.iter().any(|d| std::mem::discriminant(d) == std::mem::discriminant(r));
-    let (mesh, r) = match error {
-        MeshError::NonManifoldVertex { .. } => repair::split_pinched_vertices(m).ok().filter(|s| !s.copy_of.is_empty()).map(|s| {
+    // A split that meets a worse defect leaves the error as validation gave it.
+    let (mesh, r) = match repair_for(m, error).ok()?? {
+        Repaired::Split(s) => {
             let n = s.copy_of.len();
             (s.mesh, Repair::Split(n))
-        })?,
-        MeshError::DuplicateFace { .. } => repair::remove_duplicate_faces(m).map(|d| (d.mesh, Repair::Deduplicated(d.removed_faces)))?,
-        MeshError::InconsistentOrientation { .. } => repair::orient_coherently(m).map(|o| (o.mesh, Repair::Reoriented(o.flipped_faces)))?,
-        _ => return None,
+        }
+        Repaired::Deduplicated(d) => (d.mesh, Repair::Deduplicated(d.removed_faces)),
+        Repaired::Reoriented(o) => (o.mesh, Repair::Reoriented(o.flipped_faces)),
     };
     (!same(&r)).then_some((mesh, r))
 }
