@@ -276,12 +276,12 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
         let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, input_boundary) };
         let density = sizing::vertex_density(mesh, options.shape.sizing, faces.len());
         let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed, density: density.as_deref() };
-        let (new_faces, stays, planar_points, targets, report) = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
-        faces = new_faces;
-        fixed = stays;
-        has_plane = planar_points;
-        face_targets = targets;
-        shape_report = report;
+        let shaped = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
+        faces = shaped.faces;
+        fixed = shaped.stays;
+        has_plane = shaped.has_plane;
+        face_targets = shaped.face_target;
+        shape_report = shaped.report;
     }
     let shape_seconds = t_shape.elapsed().as_secs_f64();
     progress::check(progress, Stage::Remesh, 0.5, "equalizing the areas")?;

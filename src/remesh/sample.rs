@@ -152,7 +152,9 @@ pub(crate) fn isotropic_cap(grid: &TriMesh, surface_area: f64, place: &Place<'_>
 /// more than `r_cap` apart (two sides of a narrow gap of the surface, as between fingers).
 fn poisson_disk(candidates: &[(usize, [f64; 3])], cap: &[[f64; 3]], fixed: &[[f64; 3]], fixed_cap: &[[f64; 3]], r: f64, r_cap: f64) -> Vec<usize> {
     let cell = |x: [f64; 3]| x.map(|c| (c / r).floor() as i64);
-    let mut grid: crate::mesh::fasthash::FastMap<[i64; 3], Vec<([f64; 3], [f64; 3])>> = Default::default();
+    // Accepted points by grid cell: surface point and cap point.
+    type Cells = crate::mesh::fasthash::FastMap<[i64; 3], Vec<([f64; 3], [f64; 3])>>;
+    let mut grid: Cells = Default::default();
     for (&x, &y) in fixed.iter().zip(fixed_cap) {
         grid.entry(cell(x)).or_default().push((x, y));
     }

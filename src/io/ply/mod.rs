@@ -109,9 +109,12 @@ pub(crate) fn read_vertex_properties(path: &Path, data: &[u8], names: &[&str]) -
     Ok((mesh, attributes))
 }
 
+/// Vertex properties read besides the positions: each one's type and values.
+type ExtraProperties = Vec<(Scalar, Vec<f64>)>;
+
 /// Parse a PLY file's bytes, also reading the vertex properties `extra` (their types and
 /// values, in that order).
-fn read_with(path: &Path, data: &[u8], extra: &[&str]) -> Result<(TriMesh, Vec<(Scalar, Vec<f64>)>), ReadError> {
+fn read_with(path: &Path, data: &[u8], extra: &[&str]) -> Result<(TriMesh, ExtraProperties), ReadError> {
     let header = header::parse(path, data)?;
     let vertex = header.elements.iter().position(|e| e.name == b"vertex");
     let face = header.elements.iter().position(|e| e.name == b"face");

@@ -202,18 +202,30 @@ fn face_densities(faces: &[[u32; 3]], rho: &[f64]) -> Vec<f64> {
     faces.iter().map(|f| f.iter().map(|&v| rho[v as usize]).sum::<f64>() / 3.0).collect()
 }
 
+/// What [`optimize_shape`] returns besides the positions and planar points it moves in place.
+pub(crate) struct Shaped {
+    /// The new faces (vertices added and removed).
+    pub faces: Vec<[u32; 3]>,
+    /// Which vertices must stay in later stages (the rim and bottom of a closed surface, the
+    /// boundary of an open one).
+    pub stays: Vec<bool>,
+    /// Which vertices have a planar point.
+    pub has_plane: Vec<bool>,
+    /// Each face's relative target area (all 1 when uniform).
+    pub face_target: Vec<f64>,
+    /// What the stage did.
+    pub report: ShapeReport,
+}
+
 /// Run the relaxation and polish iterations of `options` on the remesh `(faces, plane,
-/// position)`; returns the new faces (positions and planar points in place, vertices
-/// added and removed), which vertices must stay in later stages (the rim and bottom of a
-/// closed surface, the boundary of an open one), which have a planar point, each face's
-/// relative target area (all 1 when uniform) and the report.
+/// position)` ([`Shaped`]; positions and planar points in place).
 pub(crate) fn optimize_shape(
     input: &ShapeInput,
     faces: Vec<[u32; 3]>,
     plane: &mut Vec<[f64; 2]>,
     position: &mut Vec<[f64; 3]>,
     options: &ShapeOptions,
-) -> (Vec<[u32; 3]>, Vec<bool>, Vec<bool>, Vec<f64>, ShapeReport) {
+) -> Shaped {
     let n = plane.len();
     let before = crate::metrics::angles::angle_quality_of(position, &faces);
     let mut report = ShapeReport { before, after: before, sizing: options.sizing, ..Default::default() };
@@ -337,5 +349,5 @@ pub(crate) fn optimize_shape(
     let stays = mesh.role.iter().map(|&r| r != Role::Free).collect();
     *plane = mesh.plane;
     *position = mesh.position;
-    (mesh.faces, stays, mesh.has_plane, face_target, report)
+    Shaped { faces: mesh.faces, stays, has_plane: mesh.has_plane, face_target, report }
 }

@@ -155,7 +155,9 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
             }
         }
     }
-    let mut best: Option<(usize, f64, [f64; 2], [f64; 3], u32)> = None;
+    // Crossings, smallest angle, planar point, surface point, face.
+    type Candidate = (usize, f64, [f64; 2], [f64; 3], u32);
+    let mut best: Option<Candidate> = None;
     for q in candidates {
         if !ring_valid_in_plane(mesh, ring, v, q) {
             continue;
