@@ -292,3 +292,36 @@ fn each_validation_error_gets_its_repair() {
     assert!(repair_for(&fin, &e).unwrap().is_none(), "{e}");
     assert!(repair_for(&good, &MeshError::DuplicateFace { face: 1, first: 0 }).is_ok_and(|r| r.is_none()));
 }
+
+/// A closed surface missing one face is mapped as a disk (it is one), and check, param and
+/// remesh say that its boundary is tiny for its size; a genuine open surface gets no such note.
+#[test]
+fn a_closed_surface_with_a_hole_is_pointed_out() {
+    use capmesh::mesh::validate::{small_boundary, SMALL_BOUNDARY};
+    let good = read_mesh(&common::data("closed_hippocampus_choi.obj")).unwrap();
+    let holed = TriMesh::new(good.vertices.clone(), good.faces[1..].to_vec());
+    assert_eq!(validate(&holed).unwrap().0, SurfaceKind::OpenDisk);
+    let (edges, ratio) = small_boundary(&holed).unwrap();
+    assert_eq!(edges, 3);
+    assert!(ratio > 0.0 && ratio < SMALL_BOUNDARY, "{ratio}");
+    // The ratio is the triangle's perimeter over the root of the remaining area.
+    let [a, b, c] = good.faces[0].map(|v| good.vertices[v as usize]);
+    let d = |p: [f64; 3], q: [f64; 3]| (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt();
+    let area: f64 = holed.faces.iter().map(|f| capmesh::mesh::geometry::triangle_area(holed.vertices[f[0] as usize], holed.vertices[f[1] as usize], holed.vertices[f[2] as usize])).sum();
+    assert!((ratio - (d(a, b) + d(b, c) + d(c, a)) / area.sqrt()).abs() < 1e-12 * ratio);
+    for open in ["open_face_choi.obj", "open_lv_endo_rabbit_chaste.obj", "open_hand_choi.obj"] {
+        assert!(small_boundary(&read_mesh(&common::data(open)).unwrap()).is_none(), "{open}");
+    }
+    assert!(small_boundary(&good).is_none());
+    let dir = common::TempDir::new("holed");
+    let input = dir.path("holed.obj");
+    capmesh::io::write_mesh(&input, &holed).unwrap();
+    let note = "a closed surface with a hole?";
+    for args in [vec!["check"], vec!["param", "--quiet", "-o", "cap.obj"], vec!["remesh", "--quiet", "--faces", "1000", "-o", "re.obj"]] {
+        let out = common::cli::capmesh().current_dir(dir.path(".")).arg(args[0]).arg(&input).args(&args[1..]).output().unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success() && text.contains(note) && text.contains("(3 edges)"), "{args:?}: {text}");
+    }
+    let out = common::cli::capmesh().arg("check").arg(common::data("open_face_choi.obj")).output().unwrap();
+    assert!(!String::from_utf8_lossy(&out.stdout).contains(note));
+}

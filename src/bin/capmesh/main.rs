@@ -383,6 +383,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 outln!("faces                {}", summary.n_faces);
                 outln!("edges                {}", summary.n_edges);
                 outln!("boundary loops       {}", summary.boundary_loops);
+                if summary.boundary_loops > 0 {
+                    outln!("boundary length      {:.3} of sqrt(area)", summary.boundary_length_ratio);
+                }
                 outln!("components           {}", summary.n_components);
                 outln!("Euler characteristic {}", summary.euler_characteristic);
                 if let Some(g) = summary.genus {
@@ -405,6 +408,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
             if !json {
                 if let Some(kind) = summary.kind {
                     outln!("surface              {kind}");
+                }
+                if let Some(note) = param_cmd::small_boundary_note(&input, &m) {
+                    outln!("{note}");
                 }
             }
             Ok(())

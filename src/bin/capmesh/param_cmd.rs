@@ -64,6 +64,11 @@ pub fn run(args: ParamArgs) -> Result<(), Failure> {
         r.flipped_faces,
         r.seconds
     );
+    if r.kind == capmesh::mesh::SurfaceKind::OpenDisk {
+        if let Some(note) = small_boundary_note(&input, &m) {
+            outln!("{note}");
+        }
+    }
     warn_if_poor(&input, r);
     if let Some(path) = report {
         staged.push(outputs::stage_json(&path, r)?);
@@ -124,6 +129,18 @@ pub(crate) fn repair(m: &capmesh::TriMesh, error: &capmesh::mesh::MeshError, don
         Repaired::Reoriented(o) => (o.mesh, Repair::Reoriented(o.flipped_faces)),
     };
     (!same(&r)).then_some((mesh, r))
+}
+
+/// What the commands say about an open surface whose boundary is short against its size
+/// (`capmesh::mesh::validate::small_boundary`): a closed surface with a hole is mapped as a
+/// disk, and the user may have wanted it closed.
+pub(crate) fn small_boundary_note(input: &Path, m: &capmesh::TriMesh) -> Option<String> {
+    let (edges, ratio) = capmesh::mesh::validate::small_boundary(m)?;
+    Some(format!(
+        "{}: an open surface, but its boundary ({edges} edges) is only {ratio:.3} of the square root of its area: \
+         a closed surface with a hole? param and remesh map it as a disk; fill the hole (MeshLab: 'Close Holes') to map it as closed",
+        input.display()
+    ))
 }
 
 /// What the commands say when they drop `n` repeated faces.

@@ -134,6 +134,11 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     if rep.reoriented_faces > 0 {
         outln!("{}", crate::param_cmd::reorient_note(&input, rep.reoriented_faces));
     }
+    if rep.param.kind == capmesh::mesh::SurfaceKind::OpenDisk {
+        if let Some(note) = crate::param_cmd::small_boundary_note(&input, &m) {
+            outln!("{note}");
+        }
+    }
     warn_if_poor(&input, &rep.param);
     if rep.quality.zero_area_faces > 0 {
         eprintln!(
