@@ -219,12 +219,12 @@ pub struct RemeshReport {
     /// Seconds spent measuring the result ([`RemeshReport::quality`]).
     pub metrics_seconds: f64,
     /// Copies made of pinched input vertices, one per fan beyond the first
-    /// ([`split_pinched_vertices`]; 0 for a manifold input).
+    /// ([`split_pinched_vertices`](crate::mesh::repair::split_pinched_vertices); 0 for a manifold input).
     pub split_vertices: usize,
-    /// Input faces flipped to agree with their neighbours ([`orient_coherently`]; 0 for a
+    /// Input faces flipped to agree with their neighbours ([`orient_coherently`](crate::mesh::repair::orient_coherently); 0 for a
     /// coherently oriented input).
     pub reoriented_faces: usize,
-    /// Input faces dropped as repeats of an earlier face ([`remove_duplicate_faces`]).
+    /// Input faces dropped as repeats of an earlier face ([`remove_duplicate_faces`](crate::mesh::repair::remove_duplicate_faces)).
     pub duplicate_faces: usize,
     /// Pieces of the input dropped besides the largest (at most [`DROPPED_AREA_SHARE`] of
     /// the area, [`keep_main_component`]); the metrics are against the piece kept.
