@@ -11,7 +11,7 @@
 use crate::mesh::fasthash::FastMap;
 use crate::mesh::geometry::{cross, dot, norm, sub};
 use crate::mesh::unionfind::UnionFind;
-use crate::mesh::topology::{check_degenerate, check_duplicates, check_indices, check_not_empty, corner_fans, edge_faces};
+use crate::mesh::topology::{check_degenerate, check_duplicates, check_indices, check_not_empty, corner_fans, edge_faces, face_neighbours};
 use crate::mesh::{MeshError, TriMesh};
 
 /// `old_to_new` value of a vertex that was removed (unreferenced after the repair).
@@ -326,21 +326,7 @@ pub fn orient_coherently(mesh: &TriMesh) -> Option<Reoriented> {
         return None;
     }
     let faces = &mesh.faces;
-    const NO_FACE: u32 = u32::MAX;
-    let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
-    let mut edges: FastMap<u64, [u32; 2]> = FastMap::default();
-    for (t, f) in faces.iter().enumerate() {
-        for k in 0..3 {
-            let slot = edges.entry(key(f[k], f[(k + 1) % 3])).or_insert([NO_FACE; 2]);
-            match slot {
-                [NO_FACE, _] => slot[0] = t as u32,
-                [_, NO_FACE] => slot[1] = t as u32,
-                _ => return None,
-            }
-        }
-    }
-    // Whether face `g` walks `a -> b` as given.
-    let walks = |g: usize, a: u32, b: u32| (0..3).any(|k| faces[g][k] == a && faces[g][(k + 1) % 3] == b);
+    let neighbours = face_neighbours(mesh)?;
     // Per face: unseen, kept (false) or flipped (true).
     let mut flip: Vec<Option<bool>> = vec![None; faces.len()];
     let mut stack = Vec::new();
@@ -354,16 +340,11 @@ pub fn orient_coherently(mesh: &TriMesh) -> Option<Reoriented> {
         while let Some(t) = stack.pop() {
             piece.push(t);
             let flipped = flip[t] == Some(true);
-            for k in 0..3 {
-                let (a, b) = (faces[t][k], faces[t][(k + 1) % 3]);
-                let [p, q] = edges[&key(a, b)];
-                let g = if p as usize == t { q } else { p };
-                if g == NO_FACE {
-                    continue;
-                }
+            for &(g, same) in neighbours[t].iter().flatten() {
                 let g = g as usize;
-                // Face t walks a -> b (flipped: b -> a); g must walk the other way.
-                let needed = walks(g, a, b) != flipped;
+                // Face t walks its edge one way (flipped: the other); g must walk it the
+                // other way.
+                let needed = same != flipped;
                 match flip[g] {
                     None => {
                         flip[g] = Some(needed);

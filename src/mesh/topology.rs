@@ -311,6 +311,37 @@ pub fn edge_faces(mesh: &TriMesh) -> Result<Vec<Edge>, MeshError> {
     Ok(edges)
 }
 
+/// A face's neighbour across one of its edges and whether it walks that edge the same way.
+pub(crate) type Neighbour = Option<(u32, bool)>;
+
+/// Each face's neighbour across each of its edges (edge `k` runs from corner `k` to `k + 1`)
+/// and whether that neighbour walks the edge the same way (the two disagree in orientation);
+/// `None` on a boundary edge. `None` altogether when an edge has more than two faces or the
+/// mesh has more than [`MAX_FACES`] faces. Faces with an out-of-range index and edges from a
+/// vertex to itself are skipped (check them first).
+pub(crate) fn face_neighbours(mesh: &TriMesh) -> Option<Vec<[Neighbour; 3]>> {
+    if mesh.n_faces() > MAX_FACES {
+        return None;
+    }
+    let faces = &mesh.faces;
+    let mut neighbours = vec![[None; 3]; faces.len()];
+    HalfEdgeBuckets::new(mesh)
+        .for_each_edge(|_, _, hs| {
+            match *hs {
+                [(_, h), (_, g)] => {
+                    let same = tail(faces, h) == tail(faces, g);
+                    neighbours[h as usize / 3][h as usize % 3] = Some((g / 3, same));
+                    neighbours[g as usize / 3][g as usize % 3] = Some((h / 3, same));
+                }
+                [_] => {}
+                _ => return Err(()),
+            }
+            Ok(())
+        })
+        .ok()?;
+    Some(neighbours)
+}
+
 /// Position of vertex `v` in face `f` (0, 1 or 2).
 #[inline]
 fn corner_of(faces: &[[u32; 3]], f: u32, v: u32) -> u32 {

@@ -15,6 +15,7 @@ use std::fmt;
 use serde::Serialize;
 
 use crate::mesh::error::MeshError;
+use crate::mesh::geometry::{norm, sub, triangle_area};
 use crate::mesh::repair::{
     coincident_vertices, default_weld_tolerance, zero_area_faces, DEFAULT_ZERO_AREA_REL_TOL,
 };
@@ -80,8 +81,8 @@ pub const SMALL_BOUNDARY: f64 = 0.25;
 /// topology is `topology` (0 for a closed surface or one without area).
 pub fn boundary_length_ratio(mesh: &TriMesh, topology: &Topology) -> f64 {
     let at = |v: u32| mesh.vertices[v as usize];
-    let length: f64 = topology.boundary_loops.iter().flat_map(|l| l.iter().zip(l.iter().cycle().skip(1))).map(|(&a, &b)| crate::mesh::geometry::norm(crate::mesh::geometry::sub(at(a), at(b)))).sum();
-    let area: f64 = mesh.faces.iter().map(|f| crate::mesh::geometry::triangle_area(at(f[0]), at(f[1]), at(f[2]))).sum();
+    let length: f64 = topology.boundary_loops.iter().flat_map(|l| l.iter().zip(l.iter().cycle().skip(1))).map(|(&a, &b)| norm(sub(at(a), at(b)))).sum();
+    let area: f64 = mesh.faces.iter().map(|f| triangle_area(at(f[0]), at(f[1]), at(f[2]))).sum();
     if area > 0.0 { length / area.sqrt() } else { 0.0 }
 }
 
