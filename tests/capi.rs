@@ -404,8 +404,8 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     assert_eq!(o.optimize, CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA);
     let shape = capmesh::remesh::shape::ShapeOptions::default();
     assert_eq!(
-        (o.relax_iterations as usize, o.polish_iterations as usize, o.shape_weight, o.resample != 0),
-        (shape.relax_iterations, shape.polish_iterations, shape.shape_weight, shape.resample)
+        (o.relax_iterations as usize, o.polish_iterations as usize, o.area_steps as usize, o.shape_weight, o.resample != 0),
+        (shape.relax_iterations, shape.polish_iterations, shape.area_steps, shape.shape_weight, shape.resample)
     );
     o.faces = 2000;
     let run = |o: &capmesh_v1_remesh_options| {

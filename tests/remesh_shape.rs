@@ -321,3 +321,25 @@ fn curvature_sizing_follows_the_surface_closer() {
     let a = angle_quality(&sized);
     assert!(a.share_below_30 <= 0.02 && a.mean_min_angle_deg >= 45.0, "{a:?}");
 }
+
+/// The polish's global area steps (`ShapeOptions::area_steps`) make the hippocampal sheet's
+/// areas more equal than the same stage without them, at the same angles' bar; the report
+/// counts the steps solved.
+#[test]
+fn global_area_steps_equalize_the_areas() {
+    let mesh = load("open_hippocampus_sheet_hippunfold.obj.gz");
+    let with_steps = |steps: usize| {
+        let shape = capmesh::remesh::shape::ShapeOptions::default().with_area_steps(steps);
+        let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 }).with_shape(shape);
+        remesh(&mesh, &options, &NoProgress).unwrap()
+    };
+    let (plain_mesh, plain) = with_steps(0);
+    let (stepped_mesh, stepped) = with_steps(6);
+    eprintln!("hippocampal sheet d_face_rel without / with global steps: {:.4} / {:.4}", plain.quality.d_face_relative, stepped.quality.d_face_relative);
+    assert_eq!((plain.shape.area_steps, stepped.shape.area_steps), (0, 6));
+    assert!(stepped.quality.d_face_relative < 0.9 * plain.quality.d_face_relative, "{:.4} vs {:.4}", stepped.quality.d_face_relative, plain.quality.d_face_relative);
+    for out in [&plain_mesh, &stepped_mesh] {
+        let a = angle_quality(out);
+        assert!(a.mean_min_angle_deg >= 48.0 && a.min_angle_deg >= 15.0, "{a:?}");
+    }
+}

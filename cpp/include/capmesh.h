@@ -330,7 +330,7 @@ typedef struct capmesh_v1_remesh_options {
    */
   uint32_t relax_iterations;
   /**
-   * Polish iterations of the shape stage (joint area and shape steps). Default 100.
+   * Polish iterations of the shape stage (joint area and shape steps). Default 85.
    */
   uint32_t polish_iterations;
   /**
@@ -349,6 +349,11 @@ typedef struct capmesh_v1_remesh_options {
    * `--sizing curvature=S`; `--sizing curvature` is 3).
    */
   double sizing_strength;
+  /**
+   * Global area steps of the polish (Gauss-Newton steps of the area term over all vertices
+   * at once, one every 5 polish iterations from the first; 0 = none). Default 6.
+   */
+  uint32_t area_steps;
 } capmesh_v1_remesh_options;
 
 /**

@@ -102,6 +102,10 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 	list.addParam(RichInt(
 		"PolishIterations", clampToInt(d.polish_iterations), "Polish iterations (shape+area)",
 		"Iterations of the joint area and shape polish in the shape stage."));
+	list.addParam(RichInt(
+		"AreaSteps", clampToInt(d.area_steps), "Global area steps (shape+area)",
+		"Gauss-Newton steps of the area term over all vertices at once, one every 5 polish "
+		"iterations from the first (0: none): they remove the smooth part of the area error."));
 	list.addParam(RichFloat(
 		"ShapeWeight", Scalarm(d.shape_weight), "Shape weight (shape+area)",
 		"Weight of the shape term against the area term in the polish, >= 0: larger gives better "
@@ -132,6 +136,7 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 		throw MLException(QString("Capmesh: unknown optimization %1.").arg(o.optimize));
 	o.relax_iterations = nonNegative(list, "RelaxIterations");
 	o.polish_iterations = nonNegative(list, "PolishIterations");
+	o.area_steps = nonNegative(list, "AreaSteps");
 	o.shape_weight = double(list.getFloat("ShapeWeight"));
 	o.resample = list.getBool("Resample") ? 1 : 0;
 	o.sizing_strength = double(list.getFloat("SizingStrength"));

@@ -137,8 +137,8 @@ def remesh(vertices, faces, faces_target: int = 5000, lat_long: Optional[Tuple[i
     """Remesh through the adaptive cap, as ``capmesh remesh``: about ``faces_target`` faces
     (``--faces``), or a latitude/longitude grid of ``lat_long = (rings, sectors)``. Returns
     ``(vertices, faces, report)``. Options: those of :func:`parameterize` and
-    area_equalization, optimize, relax_iterations, polish_iterations, shape_weight,
-    no_resample, sizing ("uniform", the default, or "curvature[=S]")."""
+    area_equalization, optimize, relax_iterations, polish_iterations, area_steps,
+    shape_weight, no_resample, sizing ("uniform", the default, or "curvature[=S]")."""
     v, f, report = _capmesh.remesh(_vertices(vertices), _faces(faces), faces_target, lat_long, progress, **options)
     return v, f, _json.loads(report)
 

@@ -14,7 +14,7 @@ use crate::errors::input;
 /// The parameterization options shared by `parameterize` and `remesh` (the CLI's `MapArgs`).
 pub const MAP_OPTIONS: [&str; 8] = ["initial", "lambda_", "open_lambda", "no_lambda_fallback", "smoothing", "area_refinement", "puncture_end", "search_sites"];
 /// The options of `remesh` only.
-pub const REMESH_OPTIONS: [&str; 7] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "shape_weight", "no_resample", "sizing"];
+pub const REMESH_OPTIONS: [&str; 8] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "area_steps", "shape_weight", "no_resample", "sizing"];
 
 fn parsed<T: std::str::FromStr<Err = String>>(value: &Bound<'_, PyAny>) -> PyResult<T> {
     let text: String = value.str()?.extract()?;
@@ -77,6 +77,7 @@ pub fn remesh(grid: capmesh::CapGrid, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
             "optimize" => options.optimize = parsed::<Optimize>(&value)?,
             "relax_iterations" => options.shape = options.shape.clone().with_relax_iterations(number(&name, &value)?),
             "polish_iterations" => options.shape = options.shape.clone().with_polish_iterations(number(&name, &value)?),
+            "area_steps" => options.shape = options.shape.clone().with_area_steps(number(&name, &value)?),
             "shape_weight" => options.shape = options.shape.clone().with_shape_weight(number(&name, &value)?),
             "no_resample" => options.shape = options.shape.clone().with_resample(!number::<bool>(&name, &value)?),
             "sizing" => options.shape = options.shape.clone().with_sizing(parsed::<capmesh::Sizing>(&value)?),

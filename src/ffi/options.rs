@@ -92,7 +92,7 @@ pub struct capmesh_v1_remesh_options {
     /// Relaxation iterations of the shape stage (edge flips and tangential relaxation on the
     /// surface). Default 40.
     pub relax_iterations: u32,
-    /// Polish iterations of the shape stage (joint area and shape steps). Default 100.
+    /// Polish iterations of the shape stage (joint area and shape steps). Default 85.
     pub polish_iterations: u32,
     /// Weight of the shape term against the area term in the polish, finite and >= 0 (larger:
     /// better angles, less equal areas). Default 0.1.
@@ -104,6 +104,9 @@ pub struct capmesh_v1_remesh_options {
     /// a finite strength > 0 = smaller faces where the surface is curved (the CLI's
     /// `--sizing curvature=S`; `--sizing curvature` is 3).
     pub sizing_strength: f64,
+    /// Global area steps of the polish (Gauss-Newton steps of the area term over all vertices
+    /// at once, one every 5 polish iterations from the first; 0 = none). Default 6.
+    pub area_steps: u32,
 }
 
 /// The defaults documented on each field.
@@ -133,6 +136,7 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
         optimize: CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA,
         relax_iterations: shape.relax_iterations as u32,
         polish_iterations: shape.polish_iterations as u32,
+        area_steps: shape.area_steps as u32,
         shape_weight: shape.shape_weight,
         resample: i32::from(shape.resample),
         sizing_strength: match shape.sizing {
@@ -234,6 +238,7 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         .with_sizing(sizing)
         .with_relax_iterations(o.relax_iterations as usize)
         .with_polish_iterations(o.polish_iterations as usize)
+        .with_area_steps(o.area_steps as usize)
         .with_shape_weight(shape_weight)
         .with_resample(resample);
     Ok(RemeshOptions {

@@ -136,6 +136,11 @@ enum Command {
         /// Polish iterations of the shape stage (joint area and shape steps).
         #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().polish_iterations)]
         polish_iterations: usize,
+        /// Global area steps of the polish: Gauss-Newton steps of the area term over all
+        /// vertices at once (one every 5 polish iterations from the first; 0: none), which
+        /// remove the smooth part of the area error the per-vertex steps spread slowly.
+        #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().area_steps)]
+        area_steps: usize,
         /// Weight of the shape term against the area term in the polish (larger: better
         /// angles, less equal areas).
         #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().shape_weight)]
@@ -317,7 +322,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let basis = basis.kind()?;
             shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, basis, groups, quiet: cli.quiet })
         }
-        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, shape_weight, no_resample, largest_piece, sizing, figures, map } => {
+        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, area_steps, shape_weight, no_resample, largest_piece, sizing, figures, map } => {
             remesh_cmd::run(remesh_cmd::RemeshArgs {
                 input,
                 output,
@@ -331,6 +336,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 optimize,
                 relax_iterations,
                 polish_iterations,
+                area_steps,
                 shape_weight,
                 no_resample,
                 largest_piece,

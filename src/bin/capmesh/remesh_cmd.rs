@@ -23,6 +23,7 @@ pub struct RemeshArgs {
     pub optimize: capmesh::remesh::Optimize,
     pub relax_iterations: usize,
     pub polish_iterations: usize,
+    pub area_steps: usize,
     pub shape_weight: f64,
     pub no_resample: bool,
     pub largest_piece: bool,
@@ -74,6 +75,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         optimize,
         relax_iterations,
         polish_iterations,
+        area_steps,
         shape_weight,
         no_resample,
         largest_piece,
@@ -93,7 +95,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     let read_seconds = t_read.elapsed().as_secs_f64();
     let bar = cli_progress::Bar::new(quiet);
     let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-    let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing);
+    let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_area_steps(area_steps).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing);
     let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape);
     if largest_piece {
         options = options.with_pieces(capmesh::Pieces::Largest);
