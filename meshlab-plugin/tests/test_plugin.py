@@ -50,7 +50,7 @@ def test_filters_are_registered_with_capmesh_defaults(plugin, mesh_file):
     remesh = ms.filter_parameter_values("capmesh_remesh")
     assert remesh["grid"] == 0 and remesh["faces"] > 0 and remesh["rings"] > 0 and remesh["sectors"] > 0
     assert remesh["optimize"] == 0  # shape+area
-    assert remesh["relaxiterations"] == 40 and remesh["polishiterations"] == 100
+    assert remesh["relaxiterations"] == 40 and remesh["polishiterations"] == 85 and remesh["areasteps"] == 6
     assert remesh["shapeweight"] == pytest.approx(0.1) and remesh["resample"]
     assert remesh["sizingstrength"] == 0.0
     assert ms.filter_parameter_values("capmesh_harmonics_reconstruction")["order"] > 0
@@ -153,8 +153,8 @@ def test_default_shape_and_area_remesh_has_few_thin_faces(plugin, mesh_file):
         out = ms.current_mesh()
         shares[optimize], faces[optimize] = share_below_30_degrees(out), out.face_number()
         assert report["face_count"] == out.face_number()
-        # 40 relaxation + 100 polish iterations with shape+area, no shape stage with area
-        assert report["shape_iterations"] == (140 if optimize == "shape+area" else 0)
+        # 40 relaxation + 85 polish iterations with shape+area, no shape stage with area
+        assert report["shape_iterations"] == (125 if optimize == "shape+area" else 0)
         assert topology(ms)[0] > 0  # still open
     print("share of faces below 30 degrees:", shares, "faces:", faces)
     assert shares["shape+area"] < 0.05
