@@ -16,7 +16,8 @@
 use super::smooth::{ring_faces_same_side, ring_valid_in_plane};
 use super::state::{smallest_angle_tan, Incidence, Role, Shaping, SurfaceLift};
 use crate::linalg::SpdSolver;
-use crate::mesh::geometry::{cross, norm, signed_area_2d, sub};
+use crate::mesh::geometry::{signed_area_2d, triangle_area};
+use crate::mesh::topology::within_rings;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 
 /// Polish iterations between two global steps ([`super::ShapeOptions::area_steps`] of them
@@ -58,18 +59,8 @@ pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target:
     let n = mesh.plane.len();
     // Vertices within BOTTOM_RINGS edges of a closed surface's merged bottom (no planar
     // point) stay: the plane is most distorted there and the spoke faces have no planar area.
-    let mut near = mesh.has_plane.iter().map(|&p| !p).collect::<Vec<bool>>();
-    for _ in 0..BOTTOM_RINGS {
-        let mut grown = near.clone();
-        for f in &mesh.faces {
-            if f.iter().any(|&u| near[u as usize]) {
-                for &u in f {
-                    grown[u as usize] = true;
-                }
-            }
-        }
-        near = grown;
-    }
+    let bottom: Vec<bool> = mesh.has_plane.iter().map(|&p| !p).collect();
+    let near = if bottom.contains(&true) { within_rings(&bottom, &mesh.faces, BOTTOM_RINGS) } else { bottom };
     let mut index = vec![u32::MAX; n];
     let mut free = Vec::new();
     for v in 0..n {
@@ -84,21 +75,14 @@ pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target:
     // Each free vertex's free neighbours and itself, sorted: the block pattern.
     let mut start = Vec::with_capacity(free.len() + 1);
     let mut nb: Vec<u32> = Vec::with_capacity(free.len() * 7);
+    let mut row: Vec<u32> = Vec::new();
     start.push(0);
     for &v in &free {
-        let s = nb.len();
-        for &t in incidence.of(v) {
-            nb.extend(mesh.faces[t as usize].iter().map(|&u| index[u as usize]).filter(|&i| i != u32::MAX));
-        }
-        nb[s..].sort_unstable();
-        let mut w = s;
-        for r in s..nb.len() {
-            if r == s || nb[r] != nb[w - 1] {
-                nb[w] = nb[r];
-                w += 1;
-            }
-        }
-        nb.truncate(w);
+        row.clear();
+        row.extend(incidence.of(v).iter().flat_map(|&t| mesh.faces[t as usize]).map(|u| index[u as usize]).filter(|&i| i != u32::MAX));
+        row.sort_unstable();
+        row.dedup();
+        nb.extend_from_slice(&row);
         start.push(nb.len());
     }
     let m = free.len();
@@ -121,16 +105,12 @@ pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target:
         let p = f.map(|u| mesh.plane[u as usize]);
         let planar = signed_area_2d(p[0], p[1], p[2]);
         let x = f.map(|u| mesh.position[u as usize]);
-        let surface = 0.5 * norm(cross(sub(x[1], x[0]), sub(x[2], x[0])));
+        let surface = triangle_area(x[0], x[1], x[2]);
         if planar == 0.0 || !(surface > 0.0) {
             continue;
         }
         let r = ln_target(t) - surface.ln();
-        // d ln|signed area| / d corner k = (y_{k+1} - y_{k+2}, x_{k+2} - x_{k+1}) / (2 area).
-        let grad: [[f64; 2]; 3] = std::array::from_fn(|k| {
-            let (a, b) = (p[(k + 1) % 3], p[(k + 2) % 3]);
-            [0.5 * (a[1] - b[1]) / planar, 0.5 * (b[0] - a[0]) / planar]
-        });
+        let grad = ln_area_gradient(p, planar);
         let ids = f.map(|u| index[u as usize]);
         for i in 0..3 {
             if ids[i] == u32::MAX {
@@ -197,6 +177,14 @@ pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target:
     Some(out)
 }
 
+/// The gradient of `ln |signed area|` of the planar triangle `p` (signed area `planar`) with
+/// respect to each corner: `(y_{k+1} - y_{k+2}, x_{k+2} - x_{k+1}) / (2 area)`.
+fn ln_area_gradient(p: [[f64; 2]; 3], planar: f64) -> [[f64; 2]; 3] {
+    std::array::from_fn(|k| {
+        let (a, b) = (p[(k + 1) % 3], p[(k + 2) % 3]);
+        [0.5 * (a[1] - b[1]) / planar, 0.5 * (b[0] - a[0]) / planar]
+    })
+}
 
 /// Vertex `v` moved by its global step `u` (clamped to a quarter of its shortest planar
 /// edge, where the linearisation holds), halved until its faces stay valid in the plane and
@@ -247,6 +235,7 @@ fn ring_smallest_tan(mesh: &Shaping, ring: &[u32], v: usize, x: [f64; 3]) -> f64
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::remesh::shape::polish::ln_mean_area;
 
     /// A flat `k x k` square grid (planar point = surface point), its border fixed and its
     /// interior displaced by a smooth bump `amp * sin(pi x) sin(pi y)` along x: the faces'
@@ -278,12 +267,11 @@ mod tests {
 
     /// Sum of squared log errors of the faces' surface areas against the mean.
     fn area_error(mesh: &Shaping) -> f64 {
-        let areas: Vec<f64> = mesh.faces.iter().map(|f| {
+        let ln_mean = ln_mean_area(mesh);
+        mesh.faces.iter().map(|f| {
             let x = f.map(|u| mesh.position[u as usize]);
-            0.5 * norm(cross(sub(x[1], x[0]), sub(x[2], x[0])))
-        }).collect();
-        let ln_mean = (areas.iter().sum::<f64>() / areas.len() as f64).ln();
-        areas.iter().map(|a| (a.ln() - ln_mean).powi(2)).sum()
+            (triangle_area(x[0], x[1], x[2]).ln() - ln_mean).powi(2)
+        }).sum()
     }
 
     fn apply(mesh: &mut Shaping, u: &[[f64; 2]], s: f64) {
@@ -300,10 +288,7 @@ mod tests {
         let mut mesh = bumped_grid(16, 0.08);
         let incidence = mesh.incidence();
         let before = area_error(&mesh);
-        let ln_mean = {
-            let total: f64 = mesh.faces.iter().map(|f| { let x = f.map(|u| mesh.position[u as usize]); 0.5 * norm(cross(sub(x[1], x[0]), sub(x[2], x[0]))) }).sum();
-            (total / mesh.faces.len() as f64).ln()
-        };
+        let ln_mean = ln_mean_area(&mesh);
         let u = global_area_step(&mesh, &incidence, &|_| ln_mean, SMOOTHNESS, &mut SpdSolver::new()).expect("solvable");
         for v in 0..u.len() {
             if mesh.role[v] != Role::Free {
@@ -329,11 +314,8 @@ mod tests {
         for &f in &mesh.faces {
             let p = f.map(|v| mesh.plane[v as usize]);
             let planar = signed_area_2d(p[0], p[1], p[2]);
-            let predicted: f64 = (0..3).map(|k| {
-                let (a, b) = (p[(k + 1) % 3], p[(k + 2) % 3]);
-                let g = [0.5 * (a[1] - b[1]) / planar, 0.5 * (b[0] - a[0]) / planar];
-                h * (g[0] * u[f[k] as usize][0] + g[1] * u[f[k] as usize][1])
-            }).sum();
+            let g = ln_area_gradient(p, planar);
+            let predicted: f64 = (0..3).map(|k| h * (g[k][0] * u[f[k] as usize][0] + g[k][1] * u[f[k] as usize][1])).sum();
             let actual = ln_area(&moved, f) - ln_area(&mesh, f);
             assert!((actual - predicted).abs() < 1e-4 * predicted.abs() + 1e-12, "{actual} vs {predicted}");
         }
