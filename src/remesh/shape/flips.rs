@@ -72,6 +72,16 @@ enum Fan<'a> {
     Insert,
 }
 
+/// An edge's verdict judged at the start of a pass, on the mesh as it was then.
+#[derive(Clone, Copy)]
+struct Ahead {
+    /// The pair's opposite corners when it is an interior pair of planar faces without a fan
+    /// (`None` otherwise: judged again in the sweep).
+    corners: Option<[u32; 2]>,
+    /// Whether flipping it improves what the pass asks for.
+    better: bool,
+}
+
 /// What a flip must improve.
 #[derive(Clone, Copy, PartialEq)]
 enum Criterion {
@@ -142,19 +152,30 @@ impl Flipper {
 
     /// Passes of flips by `criterion` until none flips ([`MAX_PASSES`] at most).
     fn run(&mut self, mesh: &mut Shaping, criterion: Criterion) -> usize {
-        let mut keys: Vec<(u32, u32)> = self.edges.iter().filter(|(_, f)| f[0] != u32::MAX && f[1] != u32::MAX).map(|(&k, _)| k).collect();
-        keys.sort_unstable();
+        let mut interior: Vec<((u32, u32), [u32; 2])> = self.edges.iter().filter(|(_, f)| f[0] != u32::MAX && f[1] != u32::MAX).map(|(&k, &f)| (k, f)).collect();
+        interior.sort_unstable_by_key(|&(k, _)| k);
+        let mut keys: Vec<(u32, u32)> = interior.iter().map(|&(k, _)| k).collect();
         // The first pass visits every edge: its verdicts are judged in parallel on the mesh
         // as it is before the pass. A verdict depends only on the pair's two faces and its
         // four vertices' positions and valences, which no earlier flip of the pass changed
         // when none of the four vertices took part in one (a flip changes only faces whose
         // corners are its own four vertices): then the verdict judged ahead is the one the
         // sweep would judge, and the flips are those of a sequential pass.
-        let ahead: Vec<bool> = {
+        // Most edges keep their verdict `false` through the pass: those whose four vertices no
+        // flip touched are skipped without looking them up again.
+        let ahead: Vec<Ahead> = {
             let this = &*self;
             let mesh = &*mesh;
-            keys.par_iter()
-                .map(|&(a, b)| this.pair(mesh, a, b).is_some_and(|(t1, t2, c, d)| this.fan_flip(mesh, [a, b, c, d]).is_some_and(|fan| this.better(mesh, criterion, [a, b, c, d], [t1, t2], fan))))
+            interior
+                .par_iter()
+                .map(|&((a, b), faces)| match pair_of(mesh, a, b, faces) {
+                    Some((t1, t2, c, d)) => match this.fan_flip(mesh, [a, b, c, d]) {
+                        Some(FanFlip::No) => Ahead { corners: Some([c, d]), better: this.better(mesh, criterion, [a, b, c, d], [t1, t2], FanFlip::No) },
+                        Some(fan) => Ahead { corners: None, better: this.better(mesh, criterion, [a, b, c, d], [t1, t2], fan) },
+                        None => Ahead { corners: None, better: false },
+                    },
+                    None => Ahead { corners: None, better: false },
+                })
                 .collect()
         };
         let mut touched = vec![false; mesh.plane.len()];
@@ -163,6 +184,13 @@ impl Flipper {
         for pass in 0..MAX_PASSES {
             let mut this_pass = 0;
             for (i, &(a, b)) in keys.iter().enumerate() {
+                if pass == 0 {
+                    if let Ahead { corners: Some([c, d]), better: false } = ahead[i] {
+                        if [a, b, c, d].iter().all(|&v| !touched[v as usize]) {
+                            continue;
+                        }
+                    }
+                }
                 let Some((t1, t2, c, d)) = self.pair(mesh, a, b) else { continue };
                 let Some(fan_flip) = self.fan_flip(mesh, [a, b, c, d]) else { continue };
                 if c == d || self.edges.contains_key(&(c.min(d), c.max(d))) {
@@ -171,7 +199,7 @@ impl Flipper {
                 // A spoke's verdict also depends on the fan's other vertices, which other
                 // spoke flips of the pass change: it is judged afresh.
                 let judged_ahead = pass == 0 && fan_flip == FanFlip::No && [a, b, c, d].iter().all(|&v| !touched[v as usize]);
-                let better = if judged_ahead { ahead[i] } else { self.better(mesh, criterion, [a, b, c, d], [t1, t2], fan_flip) };
+                let better = if judged_ahead { ahead[i].better } else { self.better(mesh, criterion, [a, b, c, d], [t1, t2], fan_flip) };
                 if !better {
                     continue;
                 }
@@ -233,13 +261,7 @@ impl Flipper {
     /// The faces `(t1, t2)` of interior edge `(a, b)` (`t1 = (a, b, c)`, `t2 = (b, a, d)`) and
     /// its opposite corners `c`, `d`; `None` on the boundary.
     fn pair(&self, mesh: &Shaping, a: u32, b: u32) -> Option<(u32, u32, u32, u32)> {
-        let &[t1, t2] = self.edges.get(&(a, b))?;
-        if t1 == u32::MAX || t2 == u32::MAX {
-            return None;
-        }
-        let c = third(mesh.faces[t1 as usize], a, b)?;
-        let d = third(mesh.faces[t2 as usize], b, a)?;
-        Some((t1, t2, c, d))
+        pair_of(mesh, a, b, *self.edges.get(&(a, b))?)
     }
 
     /// Whether flipping the edge `(a, b)` of the pair `[t1, t2]` with opposite corners `c`,
@@ -265,6 +287,17 @@ impl Flipper {
             }
         }
     }
+}
+
+/// [`Flipper::pair`] of edge `(a, b)` whose faces (where it runs a -> b, then b -> a) are
+/// `[t1, t2]`.
+fn pair_of(mesh: &Shaping, a: u32, b: u32, [t1, t2]: [u32; 2]) -> Option<(u32, u32, u32, u32)> {
+    if t1 == u32::MAX || t2 == u32::MAX {
+        return None;
+    }
+    let c = third(mesh.faces[t1 as usize], a, b)?;
+    let d = third(mesh.faces[t2 as usize], b, a)?;
+    Some((t1, t2, c, d))
 }
 
 /// [`smallest_angle_tan`] of face `f` of `mesh`.
