@@ -91,9 +91,10 @@ fn check_with(name: &str, max_d_face: f64) -> capmesh::remesh::RemeshReport {
     // The bound is 48 degrees on every shared mesh (48.1 at worst at the last
     // measurement); the margin is for rounding differences between builds.
     assert!(a.mean_min_angle_deg >= 47.5, "{name}: mean smallest angle {:.1}", a.mean_min_angle_deg);
-    // The last pass removes slivers below 15 degrees where a flip or move can (15.3 degrees
-    // at worst on the shared meshes); the bound leaves a margin for rounding differences.
-    assert!(a.min_angle_deg >= 12.0, "{name}: smallest angle {:.1}", a.min_angle_deg);
+    // The bound: the vertices of faces left thin after the last flips are moved for
+    // shape (`shape::worst`; 16.3 degrees at worst on the shared meshes at the last
+    // measurement).
+    assert!(a.min_angle_deg >= 15.0, "{name}: smallest angle {:.1}", a.min_angle_deg);
     // Where the pulled-back grid is already well shaped (the MEG helmet, nearly a cap) the
     // stage keeps it so; elsewhere it gains at least 5 degrees.
     let gain = if b.share_below_30 > 0.05 { 5.0 } else { 0.0 };
@@ -342,4 +343,18 @@ fn global_area_steps_equalize_the_areas() {
         let a = angle_quality(out);
         assert!(a.mean_min_angle_deg >= 48.0 && a.min_angle_deg >= 15.0, "{a:?}");
     }
+}
+
+/// The 12k brain's remesh kept a face of 15.9 degrees after the last flips and sliver
+/// removals; its vertices' moves for shape (`shape::worst`) raise the smallest angle above 20
+/// degrees, with the areas still within the bar.
+#[test]
+fn thin_faces_are_moved_for_shape() {
+    let mesh = load("closed_brain12k_choi.obj.gz");
+    let (out, rep) = run(&mesh, Optimize::ShapeAndArea);
+    let a = angle_quality(&out);
+    eprintln!("12k brain: smallest angle {:.2}, moves for shape {}, d_face_rel {:.4}", a.min_angle_deg, rep.shape.angle_moves, rep.quality.d_face_relative);
+    assert!(rep.shape.angle_moves > 0, "{:?}", rep.shape);
+    assert!(a.min_angle_deg >= 20.0, "{a:?}");
+    assert!(rep.quality.d_face_relative <= 0.035, "{}", rep.quality.d_face_relative);
 }

@@ -11,7 +11,9 @@
 //!    boundary vertices of an open surface slide along the input's boundary, its corners
 //!    kept (`boundary`); optionally edge splits and collapses (`resample`);
 //! 2. polish iterations: angle flips and a joint area-and-shape Gauss-Newton step (`polish`),
-//!    the first few replaced by a global Gauss-Newton step of the area term (`global_area`).
+//!    the first few replaced by a global Gauss-Newton step of the area term (`global_area`);
+//! 3. the last flips, removals of vertices at slivers (`sliver`) and moves of the vertices of
+//!    the faces still thin, weighted for shape (`worst`).
 //!
 //! The stage starts from the pulled-back cap grid or, where that lift is stretched, from an
 //! isotropic sample of the surface (`super::sample`, chosen by `super::remesh`).
@@ -30,6 +32,7 @@ pub(crate) mod sliver;
 pub(crate) mod smooth;
 pub(crate) mod state;
 pub(crate) mod uncross;
+pub(crate) mod worst;
 
 pub use uncross::UncrossReport;
 
@@ -159,6 +162,8 @@ pub struct ShapeReport {
     pub sliver_removals: usize,
     /// Vertex moves (interior relaxation and boundary slides) over all iterations.
     pub moves: usize,
+    /// Moves of the vertices of thin faces after the sliver removals, for shape (`worst`).
+    pub angle_moves: usize,
     /// Global area steps solved (`global_area`; a step whose system could not be solved is
     /// skipped and not counted).
     pub area_steps: usize,
@@ -215,6 +220,13 @@ fn length_factor(rho: &[f64]) -> impl Fn(u32, u32) -> f64 + '_ {
 /// Each face's density: the mean of its vertices'.
 fn face_densities(faces: &[[u32; 3]], rho: &[f64]) -> Vec<f64> {
     faces.iter().map(|f| f.iter().map(|&v| rho[v as usize]).sum::<f64>() / 3.0).collect()
+}
+
+/// `ln` of each face's target area: areas proportional to `1 / face_rho` with the mesh's
+/// total area.
+fn ln_face_targets(mesh: &Shaping, face_rho: &[f64]) -> Vec<f64> {
+    let ln_scale = polish::ln_mean_area(mesh) + (mesh.faces.len() as f64 / face_rho.iter().map(|r| 1.0 / r).sum::<f64>()).ln();
+    face_rho.iter().map(|r| ln_scale - r.ln()).collect()
 }
 
 /// What [`optimize_shape`] returns besides the positions and planar points it moves in place.
@@ -314,8 +326,8 @@ pub(crate) fn optimize_shape(
         // Face targets: areas proportional to 1 / density with the mesh's total area.
         let rho = vertex_densities(&mesh, input.lift, input.density);
         let face_rho = face_densities(&mesh.faces, &rho);
-        let ln_scale = polish::ln_mean_area(&mesh) + (mesh.faces.len() as f64 / face_rho.iter().map(|r| 1.0 / r).sum::<f64>()).ln();
-        let target = |t: usize| ln_scale - face_rho[t].ln();
+        let targets = ln_face_targets(&mesh, &face_rho);
+        let target = |t: usize| targets[t];
         let weight = |t: usize| face_rho[t];
         // A global area step every AREA_STEP_SPACING polish iterations from the first
         // (global_area): the smooth part of the area error in one solve.
@@ -370,6 +382,12 @@ pub(crate) fn optimize_shape(
         if report.sliver_removals > 0 {
             report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
         }
+        // Thin faces left by the last flips and removals: their vertices moved for shape.
+        let rho = vertex_densities(&mesh, input.lift, input.density);
+        let targets = ln_face_targets(&mesh, &face_densities(&mesh.faces, &rho));
+        let (moves, flips) = worst::raise_smallest_angles(&mut mesh, input.lift, &|t| targets[t], crease);
+        report.angle_moves = moves;
+        report.flips += flips;
     }
     resample::compact(&mut mesh, &mut arc);
     let face_target = face_densities(&mesh.faces, &vertex_densities(&mesh, input.lift, input.density)).iter().map(|r| 1.0 / r).collect();
