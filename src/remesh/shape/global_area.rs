@@ -14,7 +14,7 @@
 //! (2 unknowns a vertex, 2 x 2 blocks between neighbours) and solved by sparse Cholesky.
 
 use super::smooth::{ring_faces_same_side, ring_valid_in_plane};
-use super::state::{smallest_angle_tan, Incidence, Role, Shaping, SurfaceLift};
+use super::state::{ring_least, smallest_angle_tan, Incidence, Role, Shaping, SurfaceLift};
 use crate::linalg::SpdSolver;
 use crate::mesh::geometry::{signed_area_2d, triangle_area};
 use crate::mesh::topology::within_rings;
@@ -206,13 +206,13 @@ pub(crate) fn move_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift:
         return None;
     }
     let scale = (0.25 * shortest / len).min(1.0);
-    let floor = ring_smallest_tan(mesh, ring, v, mesh.position[v]).min(ANGLE_GUARD_DEG.to_radians().tan());
+    let floor = ring_least(mesh, ring, v, mesh.position[v], smallest_angle_tan).min(ANGLE_GUARD_DEG.to_radians().tan());
     let mut step = scale;
     for _ in 0..=HALVINGS {
         let q = [q0[0] + step * u[0], q0[1] + step * u[1]];
         if ring_valid_in_plane(mesh, ring, v, q) {
             if let Some((x, face)) = lift.lift(q, mesh.hint[v]) {
-                if ring_faces_same_side(mesh, ring, v, x) && ring_smallest_tan(mesh, ring, v, x) >= floor {
+                if ring_faces_same_side(mesh, ring, v, x) && ring_least(mesh, ring, v, x, smallest_angle_tan) >= floor {
                     return Some((q, x, face));
                 }
             }
@@ -220,16 +220,6 @@ pub(crate) fn move_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift:
         step *= 0.5;
     }
     None
-}
-
-/// The tangent of the smallest surface angle of the faces `ring` around `v` with `v` at `x`.
-fn ring_smallest_tan(mesh: &Shaping, ring: &[u32], v: usize, x: [f64; 3]) -> f64 {
-    ring.iter()
-        .map(|&t| {
-            let p = mesh.faces[t as usize].map(|w| if w as usize == v { x } else { mesh.position[w as usize] });
-            smallest_angle_tan(p[0], p[1], p[2])
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 #[cfg(test)]

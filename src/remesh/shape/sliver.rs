@@ -12,7 +12,7 @@
 //! rim ring, bunched on the punctured quad, loses short edges at needles the same way
 //! ([`collapse_rim_slivers`]).
 
-use super::state::{drop_faces, link_is_two, smallest_angle, Incidence, Role, Shaping};
+use super::state::{drop_faces, link_is_two, smallest_angle, thin_face_vertices, Incidence, Role, Shaping};
 use crate::mesh::geometry::{cross, dot, norm, sub};
 
 /// Faces whose smallest angle (degrees) is below this have their low-valence vertices
@@ -38,16 +38,7 @@ pub(crate) fn remove_sliver_vertices(mesh: &mut Shaping) -> usize {
     let mut removed = 0;
     for _ in 0..MAX_PASSES {
         let incidence = mesh.incidence();
-        let mut candidates: Vec<u32> = mesh
-            .faces
-            .iter()
-            .filter(|f| f[0] != f[1] && smallest_angle(mesh.position[f[0] as usize], mesh.position[f[1] as usize], mesh.position[f[2] as usize]) < threshold)
-            .flatten()
-            .copied()
-            .filter(|&v| mesh.role[v as usize] == Role::Free && mesh.planar(v) && matches!(incidence.of(v as usize).len(), 3 | 4))
-            .collect();
-        candidates.sort_unstable();
-        candidates.dedup();
+        let candidates = thin_face_vertices(mesh, threshold, |v| mesh.role[v as usize] == Role::Free && mesh.planar(v) && matches!(incidence.of(v as usize).len(), 3 | 4));
         let mut dead = vec![false; mesh.faces.len()];
         let mut touched = vec![false; mesh.plane.len()];
         let mut this_pass = 0;

@@ -175,6 +175,33 @@ pub(crate) fn third(face: [u32; 3], a: u32, b: u32) -> Option<u32> {
     (0..3).find(|&k| face[k] == a && face[(k + 1) % 3] == b).map(|k| face[(k + 2) % 3])
 }
 
+/// The least of `measure` (e.g. [`smallest_angle`]) over the faces `ring` around vertex `v`
+/// with `v` at `x`.
+pub(crate) fn ring_least(mesh: &Shaping, ring: &[u32], v: usize, x: [f64; 3], measure: fn([f64; 3], [f64; 3], [f64; 3]) -> f64) -> f64 {
+    ring.iter()
+        .map(|&t| {
+            let p = mesh.faces[t as usize].map(|w| if w as usize == v { x } else { mesh.position[w as usize] });
+            measure(p[0], p[1], p[2])
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The vertices of the faces of `mesh` whose smallest angle is below `threshold` (radians)
+/// that `keep` accepts, sorted, each once.
+pub(crate) fn thin_face_vertices(mesh: &Shaping, threshold: f64, keep: impl Fn(u32) -> bool) -> Vec<u32> {
+    let mut vertices: Vec<u32> = mesh
+        .faces
+        .iter()
+        .filter(|f| f[0] != f[1] && smallest_angle(mesh.position[f[0] as usize], mesh.position[f[1] as usize], mesh.position[f[2] as usize]) < threshold)
+        .flatten()
+        .copied()
+        .filter(|&v| keep(v))
+        .collect();
+    vertices.sort_unstable();
+    vertices.dedup();
+    vertices
+}
+
 /// The smallest angle (radians) of the triangle `(a, b, c)`.
 pub(crate) fn smallest_angle(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
     let (s, c) = smallest_angle_sin_cos(a, b, c);

@@ -9,7 +9,7 @@
 
 use super::flips::flip_to_max_min_angle;
 use super::polish::polish_vertex;
-use super::state::{smallest_angle, Role, Shaping, SurfaceLift};
+use super::state::{ring_least, smallest_angle, thin_face_vertices, Role, Shaping, SurfaceLift};
 
 /// Faces whose smallest angle (degrees) is below this have their free vertices moved.
 pub(crate) const RAISE_BELOW_DEG: f64 = 25.0;
@@ -26,16 +26,6 @@ const PASSES: usize = 4;
 /// Smallest gain (radians) of the smallest angle of a vertex's faces for a move.
 const MIN_GAIN: f64 = 1e-4;
 
-/// The smallest angle of the faces `ring` of vertex `v` with `v` at `x`.
-fn ring_smallest_angle(mesh: &Shaping, ring: &[u32], v: usize, x: [f64; 3]) -> f64 {
-    ring.iter()
-        .map(|&t| {
-            let p = mesh.faces[t as usize].map(|u| if u as usize == v { x } else { mesh.position[u as usize] });
-            smallest_angle(p[0], p[1], p[2])
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
 /// Move the free vertices of `mesh`'s faces below [`RAISE_BELOW_DEG`] where that raises the
 /// smallest angle of their faces (`ln_target(t)`: `ln` of face `t`'s target area; `crease` as
 /// in [`flip_to_max_min_angle`]). Returns the vertex moves and the flips made.
@@ -44,23 +34,14 @@ pub(crate) fn raise_smallest_angles(mesh: &mut Shaping, lift: &SurfaceLift, ln_t
     let (mut moves, mut flips) = (0, 0);
     for _ in 0..PASSES {
         let incidence = mesh.incidence();
-        let mut candidates: Vec<u32> = mesh
-            .faces
-            .iter()
-            .filter(|f| f[0] != f[1] && smallest_angle(mesh.position[f[0] as usize], mesh.position[f[1] as usize], mesh.position[f[2] as usize]) < threshold)
-            .flatten()
-            .copied()
-            .filter(|&v| mesh.role[v as usize] == Role::Free && mesh.planar(v))
-            .collect();
-        candidates.sort_unstable();
-        candidates.dedup();
+        let candidates = thin_face_vertices(mesh, threshold, |v| mesh.role[v as usize] == Role::Free && mesh.planar(v));
         let mut this_pass = 0;
         for v in candidates {
             let v = v as usize;
             let ring = incidence.of(v);
-            let before = ring_smallest_angle(mesh, ring, v, mesh.position[v]);
+            let before = ring_least(mesh, ring, v, mesh.position[v], smallest_angle);
             let Some((q, x, hint)) = polish_vertex(mesh, &incidence, v, lift, ln_target, SHAPE_WEIGHT) else { continue };
-            if ring_smallest_angle(mesh, ring, v, x) > before + MIN_GAIN {
+            if ring_least(mesh, ring, v, x, smallest_angle) > before + MIN_GAIN {
                 mesh.plane[v] = q;
                 mesh.position[v] = x;
                 mesh.hint[v] = hint;
