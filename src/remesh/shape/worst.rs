@@ -2,10 +2,11 @@
 //!
 //! The polish weighs the areas ten times the shape, so a face left thin by the last flips and
 //! the sliver removals stays thin when its vertices' areas are right: a remesh's smallest
-//! angle is usually one such face, next to a vertex of valence 3-4 or 8-13. Here the free vertices of the faces whose smallest angle is below
-//! [`RAISE_BELOW_DEG`] take the polish's step with the shape term weighted
-//! [`SHAPE_WEIGHT`] times the area term, kept only when the smallest angle of their faces
-//! grows; a few passes, each followed by the max-min-angle flips.
+//! angle is usually one such face, next to a vertex of valence 3-4 or 8-13. Here the free
+//! vertices of the faces whose smallest angle is below [`RAISE_BELOW_DEG`] take the polish's
+//! step with the shape term weighted [`SHAPE_WEIGHT`] times the area term, kept only when the
+//! smallest angle of their faces grows; a few passes, each followed by the max-min-angle
+//! flips.
 
 use super::flips::flip_to_max_min_angle;
 use super::polish::polish_vertex;
@@ -15,9 +16,10 @@ use super::state::{ring_least, smallest_angle, thin_face_vertices, Role, Shaping
 pub(crate) const RAISE_BELOW_DEG: f64 = 25.0;
 
 /// Weight of the shape term against the area term in these moves (the polish's is 0.1). With
-/// 3 the smallest angle rose on 8 of the 11 shared meshes at 5000 faces (12k brain 15.9 ->
-/// 24.1 degrees) at 0-6% more `d_face_relative`; 10 gave the same angles at up to 10% more,
-/// 1 smaller gains (docs/method.md, "Remesh shape").
+/// 3 the smallest angle rose on 6 of the 11 shared meshes at 5000 faces (12k brain 15.9 ->
+/// 24.1 degrees; four unchanged, the hand's kept start changed) at 0-6% more
+/// `d_face_relative`; 10 gave the same angles at up to 10% more, 1 smaller gains
+/// (docs/method.md, "Remesh shape").
 const SHAPE_WEIGHT: f64 = 3.0;
 
 /// Passes at most (each over the faces still below [`RAISE_BELOW_DEG`]).
