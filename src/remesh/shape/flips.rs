@@ -78,7 +78,8 @@ struct Ahead {
     /// The pair's opposite corners when it is an interior pair of planar faces without a fan
     /// (`None` otherwise: judged again in the sweep).
     corners: Option<[u32; 2]>,
-    /// Whether flipping it improves what the pass asks for.
+    /// Whether flipping it improves what the pass asks for (`false` without `corners`: the
+    /// sweep never reads it then).
     better: bool,
 }
 
@@ -169,12 +170,10 @@ impl Flipper {
             interior
                 .par_iter()
                 .map(|&((a, b), faces)| match pair_of(mesh, a, b, faces) {
-                    Some((t1, t2, c, d)) => match this.fan_flip(mesh, [a, b, c, d]) {
-                        Some(FanFlip::No) => Ahead { corners: Some([c, d]), better: this.better(mesh, criterion, [a, b, c, d], [t1, t2], FanFlip::No) },
-                        Some(fan) => Ahead { corners: None, better: this.better(mesh, criterion, [a, b, c, d], [t1, t2], fan) },
-                        None => Ahead { corners: None, better: false },
-                    },
-                    None => Ahead { corners: None, better: false },
+                    Some((t1, t2, c, d)) if this.fan_flip(mesh, [a, b, c, d]) == Some(FanFlip::No) => Ahead { corners: Some([c, d]), better: this.better(mesh, criterion, [a, b, c, d], [t1, t2], FanFlip::No) },
+                    // A spoke is judged afresh in the sweep, and an edge without a pair or
+                    // with an unplanar corner stays so while its vertices are untouched.
+                    _ => Ahead { corners: None, better: false },
                 })
                 .collect()
         };
