@@ -251,10 +251,26 @@ fn cell_moment(pieces: &[Piece], full: bool, r: f64, density: &dyn RadialDensity
 
 /// Power centers of the triangles and the length of the far closing edges of unbounded cells.
 fn centers_and_far(tri: &RegularTriangulation, r: f64) -> (Vec<[f64; 2]>, f64) {
-    let centers: Vec<[f64; 2]> = (0..tri.triangles.len()).into_par_iter().map(|t| tri.power_center(t)).collect();
-    let max_c = centers.iter().map(|c| c[0].abs().max(c[1].abs())).fold(0.0f64, f64::max);
-    let far = 4.0 * (r + max_c.min(1e8 * r.max(1.0))) + 1.0;
+    let mut centers = Vec::new();
+    let far = centers_into(tri, r, &mut centers);
     (centers, far)
+}
+
+/// [`centers_and_far`] into `centers` (its buffer reused); returns the far length.
+fn centers_into(tri: &RegularTriangulation, r: f64, centers: &mut Vec<[f64; 2]>) -> f64 {
+    centers.clear();
+    centers.par_extend((0..tri.triangles.len()).into_par_iter().map(|t| tri.power_center(t)));
+    let max_c = centers.iter().map(|c| c[0].abs().max(c[1].abs())).fold(0.0f64, f64::max);
+    4.0 * (r + max_c.min(1e8 * r.max(1.0))) + 1.0
+}
+
+/// The work buffers of [`integrate_masses_with`], kept between calls: the transport's trial
+/// steps integrate the masses of a large mesh again and again, and on a virtual machine a
+/// buffer written fresh each time costs page faults (docs/method.md section 20).
+#[derive(Default)]
+pub(crate) struct MassScratch {
+    centers: Vec<[f64; 2]>,
+    edges: Vec<ClippedEdge<(f64, f64)>>,
 }
 
 /// All cell integrals of the current (regular) triangulation, clipped to the disk of radius `r`.
@@ -298,19 +314,27 @@ struct CellScratch {
 /// ([`RadialDensity::fan_mass_and_segment_integral`]) instead of three per interior edge
 /// for whole-cell walks.
 pub fn integrate_masses(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity) -> CellIntegrals {
-    let (centers, far) = centers_and_far(tri, r);
-    let edges = clipped_edges(tri, &centers, far, r, |pi, pj, x0, x1| {
+    integrate_masses_with(tri, r, density, &mut MassScratch::default())
+}
+
+/// [`integrate_masses`] with its work buffers in `scratch` (the same values).
+pub(crate) fn integrate_masses_with(tri: &RegularTriangulation, r: f64, density: &dyn RadialDensity, scratch: &mut MassScratch) -> CellIntegrals {
+    let MassScratch { centers, edges } = scratch;
+    let far = centers_into(tri, r, centers);
+    let centers = &*centers;
+    clipped_edges_into(tri, centers, far, r, edges, |pi, pj, x0, x1| {
         let (fan, s) = density.fan_mass_and_segment_integral(x0, x1);
         let d = ((pi[0] - pj[0]).powi(2) + (pi[1] - pj[1]).powi(2)).sqrt();
         (fan, if s > 0.0 && d > 0.0 { s / (2.0 * d) } else { 0.0 })
     });
+    let edges = &*edges;
     // Sum the fans in edge order (deterministic whatever the threads' split).
     let mut mass = vec![0.0; tri.sites.len()];
-    for e in &edges {
+    for e in edges {
         mass[e.j as usize] += e.value.0;
         mass[e.i as usize] -= e.value.0;
     }
-    for (v, m) in walked_cells(tri, &centers, far, r, &edges, |pieces, full| cell_mass(pieces, full, r, density)) {
+    for (v, m) in walked_cells(tri, centers, far, r, edges, |pieces, full| cell_mass(pieces, full, r, density)) {
         mass[v] = m;
     }
     for m in &mut mass {
@@ -336,8 +360,16 @@ struct ClippedEdge<T> {
 /// `f(y_i, y_j, start, end)` of the clipped segment. In parallel over the triangles, each
 /// edge once, in triangle order.
 fn clipped_edges<T: Send>(tri: &RegularTriangulation, centers: &[[f64; 2]], far: f64, r: f64, f: impl Fn([f64; 2], [f64; 2], [f64; 2], [f64; 2]) -> T + Sync) -> Vec<ClippedEdge<T>> {
+    let mut out = Vec::new();
+    clipped_edges_into(tri, centers, far, r, &mut out, f);
+    out
+}
+
+/// [`clipped_edges`] into `out` (its buffer reused, the same order).
+fn clipped_edges_into<T: Send>(tri: &RegularTriangulation, centers: &[[f64; 2]], far: f64, r: f64, out: &mut Vec<ClippedEdge<T>>, f: impl Fn([f64; 2], [f64; 2], [f64; 2], [f64; 2]) -> T + Sync) {
     let f = &f;
-    (0..tri.triangles.len())
+    out.clear();
+    out.par_extend((0..tri.triangles.len())
         .into_par_iter()
         .flat_map_iter(|t| {
             let tr = tri.triangles[t];
@@ -358,8 +390,7 @@ fn clipped_edges<T: Send>(tri: &RegularTriangulation, centers: &[[f64; 2]], far:
                 let (x0, x1, on0, on1) = clip_segment(a, b, r)?;
                 Some(ClippedEdge { i, j, value: f(pi, pj, x0, x1), whole: !(on0 || on1 || u == NONE) })
             })
-        })
-        .collect()
+        }));
 }
 
 /// `f` of the cells whose sum over `edges` is not their integral, from their whole clipped
@@ -421,6 +452,23 @@ mod tests {
         let mut tri = RegularTriangulation::delaunay(&sites).unwrap();
         assert!(tri.update_weights(&weights));
         tri
+    }
+
+    /// Buffers kept from a call on another triangulation and radius change nothing: the same
+    /// bits as fresh ones.
+    #[test]
+    fn masses_with_reused_buffers_are_the_same_bits() {
+        let tri = weighted_triangulation();
+        let other = RegularTriangulation::delaunay(&tri.sites[..200]).unwrap();
+        let density = StereographicDensity;
+        let mut scratch = MassScratch::default();
+        integrate_masses_with(&other, 2.0, &density, &mut scratch);
+        for r in [0.45, 1.6] {
+            let fresh = integrate_masses(&tri, r, &density);
+            let reused = integrate_masses_with(&tri, r, &density, &mut scratch);
+            let bits = |c: &CellIntegrals| (c.mass.iter().map(|m| m.to_bits()).collect::<Vec<_>>(), c.edges.iter().map(|e| (e.0, e.1, e.2.to_bits())).collect::<Vec<_>>());
+            assert_eq!(bits(&fresh), bits(&reused), "r {r}");
+        }
     }
 
     #[test]

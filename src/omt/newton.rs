@@ -33,7 +33,8 @@
 //! rejected trials): the full-resolution steps then went from 15 to 26 on the
 //! lung lobe and 9 to 10 on the 48k brain.
 
-use super::cells::{cell_moments, integrate_masses, CellIntegrals};
+use super::cells::{cell_moments, integrate_masses_with, CellIntegrals, MassScratch};
+use std::sync::Mutex;
 use super::density::RadialDensity;
 use super::triangulation::RegularTriangulation;
 use crate::linalg::{GraphPattern, SolveError, SpdSolver};
@@ -85,6 +86,23 @@ pub struct OtSolver<'d> {
     /// The integrals at the current weights, when [`OtSolver::try_weights`] computed them
     /// (taken by the next [`OtSolver::solve`], dropped by [`OtSolver::rescale`]).
     current: Option<CellIntegrals>,
+    /// The trial steps' buffers, kept from one trial to the next (a lock, as a trial borrows
+    /// the solver shared; trials run one at a time).
+    scratch: Mutex<TrialScratch>,
+}
+
+/// Buffers of [`OtSolver`]'s trial steps: a large mesh's trial steps wrote some 250 MB of
+/// fresh memory each (the 776k brain), which on a virtual machine costs page faults
+/// (docs/method.md section 20).
+#[derive(Default)]
+struct TrialScratch {
+    /// A triangulation to copy the current one into (a rejected trial's, or the one an
+    /// accepted trial replaced).
+    spare: Option<RegularTriangulation>,
+    /// [`RegularTriangulation::update_weights_with`]'s edge stack.
+    stack: Vec<(u32, u8)>,
+    /// [`integrate_masses_with`]'s buffers.
+    masses: MassScratch,
 }
 
 impl<'d> OtSolver<'d> {
@@ -100,7 +118,7 @@ impl<'d> OtSolver<'d> {
             linear.set_positions(sites.iter().skip(1).copied().collect());
         }
         let hessian_pattern = GraphPattern::new(sites.len().saturating_sub(1), &[], "transport Hessian")?;
-        Ok(Self { tri, radius, density, linear, pattern: Vec::new(), hessian_pattern, current: None })
+        Ok(Self { tri, radius, density, linear, pattern: Vec::new(), hessian_pattern, current: None, scratch: Mutex::default() })
     }
 
     /// The current radius.
@@ -151,8 +169,10 @@ impl<'d> OtSolver<'d> {
         let min_m = c.mass.iter().cloned().fold(f64::INFINITY, f64::min);
         let keep = min_m >= 0.5 * min_tau;
         if keep {
-            self.tri = trial;
+            self.accept(trial);
             self.current = Some(c);
+        } else {
+            self.recycle(trial);
         }
         keep
     }
@@ -167,17 +187,38 @@ impl<'d> OtSolver<'d> {
     /// The triangulation with `weights` and its integrals; `None` when flips cannot reach
     /// them (a site became redundant).
     fn reweighted(&self, weights: &[f64]) -> Option<(RegularTriangulation, CellIntegrals)> {
-        let mut tri = self.tri.clone();
-        if !tri.update_weights(weights) {
+        let mut scratch = self.scratch.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        let scratch = &mut *scratch;
+        let mut tri = match scratch.spare.take() {
+            Some(mut spare) => {
+                spare.copy_from(&self.tri);
+                spare
+            }
+            None => self.tri.clone(),
+        };
+        if !tri.update_weights_with(weights, &mut scratch.stack) {
+            scratch.spare = Some(tri);
             return None;
         }
-        let c = integrate_masses(&tri, self.radius, self.density);
+        let c = integrate_masses_with(&tri, self.radius, self.density, &mut scratch.masses);
         Some((tri, c))
+    }
+
+    /// Keep a triangulation no longer needed for the next trial to copy into.
+    fn recycle(&self, tri: RegularTriangulation) {
+        self.scratch.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).spare = Some(tri);
+    }
+
+    /// Make `tri` the current triangulation (an accepted trial), the old one recycled.
+    fn accept(&mut self, tri: RegularTriangulation) {
+        let old = std::mem::replace(&mut self.tri, tri);
+        self.recycle(old);
     }
 
     /// Cell masses and Hessian entries at the current weights (no moments).
     fn integrals(&self) -> CellIntegrals {
-        integrate_masses(&self.tri, self.radius, self.density)
+        let mut scratch = self.scratch.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        integrate_masses_with(&self.tri, self.radius, self.density, &mut scratch.masses)
     }
 
     /// Solve for weights whose cells carry the masses `target` (rescaled to sum to the disk's
@@ -308,7 +349,7 @@ impl<'d> OtSolver<'d> {
             if quadratic && err <= options.stale_step_error {
                 let (dw, _) = self.solve_directions(&cells, tau, false).map_err(NewtonFailure::Linear)?;
                 if let Some((trial, c, e)) = self.trial(&dw, 1.0, tau, disk, eps, STALE_STEP_GAIN * err) {
-                    self.tri = trial;
+                    self.accept(trial);
                     cells = c;
                     err = e;
                     report.iterations += 1;
@@ -346,7 +387,7 @@ impl<'d> OtSolver<'d> {
                     }
                 }
             };
-            self.tri = trial;
+            self.accept(trial);
             cells = c;
             err = e;
             report.iterations += 1;
@@ -406,7 +447,12 @@ impl<'d> OtSolver<'d> {
         let (trial, c) = self.reweighted(&w)?;
         let e = l1_error(&c.mass, tau) / disk;
         let min_m = c.mass.iter().cloned().fold(f64::INFINITY, f64::min);
-        (min_m >= eps && e <= bound).then_some((trial, c, e))
+        if min_m >= eps && e <= bound {
+            Some((trial, c, e))
+        } else {
+            self.recycle(trial);
+            None
+        }
     }
 
     /// Solve `H dw = tau - m` with `w_0` pinned, and with `logarithmic` also the step of the

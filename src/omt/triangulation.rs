@@ -234,9 +234,16 @@ impl RegularTriangulation {
     /// `STUCK_EDGES_BASE + n / STUCK_EDGES_RATIO` such events end the attempt early with
     /// `false` (see [`STUCK_EDGES_RATIO`]).
     pub fn update_weights(&mut self, weights: &[f64]) -> bool {
+        self.update_weights_with(weights, &mut Vec::new())
+    }
+
+    /// [`RegularTriangulation::update_weights`] with its edge stack's buffer in `stack`
+    /// (kept between calls by the transport's trial steps: see [`super::cells::MassScratch`]).
+    pub(crate) fn update_weights_with(&mut self, weights: &[f64], stack: &mut Vec<(u32, u8)>) -> bool {
         self.weights.copy_from_slice(weights);
         let nt = self.triangles.len();
-        let mut stack: Vec<(u32, u8)> = Vec::with_capacity(3 * nt);
+        stack.clear();
+        stack.reserve(3 * nt);
         for t in 0..nt {
             for k in 0..3 {
                 let u = self.neighbors[t][k];
@@ -280,6 +287,18 @@ impl RegularTriangulation {
             return true;
         }
         self.is_regular()
+    }
+
+    /// Make `self` a copy of `other`, reusing `self`'s buffers.
+    pub(crate) fn copy_from(&mut self, other: &Self) {
+        // Destructured, so that a new field cannot be forgotten here.
+        let Self { sites, weights, triangles, neighbors, vertex_triangle, flips } = other;
+        self.sites.clone_from(sites);
+        self.weights.clone_from(weights);
+        self.triangles.clone_from(triangles);
+        self.neighbors.clone_from(neighbors);
+        self.vertex_triangle.clone_from(vertex_triangle);
+        self.flips = *flips;
     }
 
     /// Every interior edge locally regular.
@@ -345,6 +364,25 @@ mod tests {
             let s = |v: u32| co(pts[v as usize]);
             assert!(orient2d(s(t[0]), s(t[1]), s(t[2])) > 0.0);
         }
+    }
+
+    /// A triangulation copied into another one's buffers, then updated with a kept stack,
+    /// ends as a clone updated afresh does.
+    #[test]
+    fn copied_triangulations_update_like_clones() {
+        let pts = random_points(400, 11);
+        let mut current = RegularTriangulation::delaunay(&pts).unwrap();
+        let w: Vec<f64> = pts.iter().map(|p| 0.02 * (3.0 * p[0]).sin() * p[1]).collect();
+        assert!(current.update_weights(&w));
+        let mut spare = RegularTriangulation::delaunay(&random_points(150, 3)).unwrap();
+        let mut stack = vec![(7, 1); 50];
+        let w2: Vec<f64> = w.iter().map(|x| -0.5 * x).collect();
+        spare.copy_from(&current);
+        assert!(spare.update_weights_with(&w2, &mut stack));
+        let mut fresh = current.clone();
+        assert!(fresh.update_weights(&w2));
+        let key = |t: &RegularTriangulation| (t.sites.clone(), t.weights.clone(), t.triangles.clone(), t.neighbors.clone(), t.vertex_triangle.clone(), t.flips);
+        assert_eq!(key(&spare), key(&fresh));
     }
 
     #[test]
