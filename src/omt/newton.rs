@@ -34,7 +34,7 @@
 //! lung lobe and 9 to 10 on the 48k brain.
 
 use super::cells::{cell_moments, integrate_masses_with, CellIntegrals, MassScratch};
-use std::sync::Mutex;
+use std::sync::{Mutex, MutexGuard};
 use super::density::RadialDensity;
 use super::triangulation::RegularTriangulation;
 use crate::linalg::{GraphPattern, SolveError, SpdSolver};
@@ -187,7 +187,7 @@ impl<'d> OtSolver<'d> {
     /// The triangulation with `weights` and its integrals; `None` when flips cannot reach
     /// them (a site became redundant).
     fn reweighted(&self, weights: &[f64]) -> Option<(RegularTriangulation, CellIntegrals)> {
-        let mut scratch = self.scratch.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        let mut scratch = self.trial_scratch();
         let scratch = &mut *scratch;
         let mut tri = match scratch.spare.take() {
             Some(mut spare) => {
@@ -204,9 +204,15 @@ impl<'d> OtSolver<'d> {
         Some((tri, c))
     }
 
+    /// The trial steps' buffers (a poisoned lock still holds usable buffers: a panic there
+    /// left nothing half-written that the next trial reads before overwriting).
+    fn trial_scratch(&self) -> MutexGuard<'_, TrialScratch> {
+        self.scratch.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+    }
+
     /// Keep a triangulation no longer needed for the next trial to copy into.
     fn recycle(&self, tri: RegularTriangulation) {
-        self.scratch.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).spare = Some(tri);
+        self.trial_scratch().spare = Some(tri);
     }
 
     /// Make `tri` the current triangulation (an accepted trial), the old one recycled.
@@ -217,8 +223,7 @@ impl<'d> OtSolver<'d> {
 
     /// Cell masses and Hessian entries at the current weights (no moments).
     fn integrals(&self) -> CellIntegrals {
-        let mut scratch = self.scratch.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-        integrate_masses_with(&self.tri, self.radius, self.density, &mut scratch.masses)
+        integrate_masses_with(&self.tri, self.radius, self.density, &mut self.trial_scratch().masses)
     }
 
     /// Solve for weights whose cells carry the masses `target` (rescaled to sum to the disk's
