@@ -6,6 +6,7 @@ Methods, all at the same face count (TARGET, 5000 by default):
   arguments from `--capmesh-args` or the CAPMESH_ARGS environment variable (e.g.
   `--capmesh-args "--optimize area"`, to compare variants);
 - capmesh_curv: the same with `--sizing curvature` (smaller faces where the surface is curved);
+- capmesh_creases: the same with `--keep-creases` (vertices and edges along sharp edges);
 - MeshLab (pymeshlab): isotropic explicit remeshing (target edge length; its defaults keep
   edges whose faces meet at more than 30 degrees as features), the same with feature edges off
   (`featuredeg` 180: every edge may be flipped, collapsed and smoothed across), uniform mesh
@@ -83,6 +84,7 @@ QUICK_MESHES = ["open_meg_helmet_babysquid_mne", "closed_bunny_npm", "closed_bir
 METHODS = {
     "capmesh": ("capmesh", "count"),
     "capmesh_curv": ("capmesh --sizing curvature", "count"),
+    "capmesh_creases": ("capmesh --keep-creases", "count"),
     "isotropic": ("MeshLab isotropic explicit remeshing", "length"),
     "isotropic_nf": ("MeshLab isotropic explicit remeshing, feature edges off", "length"),
     "resampling": ("MeshLab uniform mesh resampling", "length"),
@@ -292,6 +294,7 @@ def initial_param(method, stats, target):
     return {
         "capmesh": target,
         "capmesh_curv": target,
+        "capmesh_creases": target,
         "isotropic": edge,
         "isotropic_nf": edge,
         "resampling": edge,
@@ -415,6 +418,8 @@ def main():
                     return run_capmesh(obj, param, out, extra, args.timeout)
                 if method == "capmesh_curv":
                     return run_capmesh(obj, param, out, extra + ["--sizing", "curvature"], args.timeout)
+                if method == "capmesh_creases":
+                    return run_capmesh(obj, param, out, extra + ["--keep-creases"], args.timeout)
                 return worker.run(method, obj, param, out, stats["open"])
 
             # Tuning (untimed), or the cached parameter.

@@ -358,3 +358,38 @@ fn thin_faces_are_moved_for_shape() {
     assert!(a.min_angle_deg >= 20.0, "{a:?}");
     assert!(rep.quality.d_face_relative <= 0.035, "{}", rep.quality.d_face_relative);
 }
+
+/// `ShapeOptions::keep_creases` on the lung lobe (a fissure edge bent by 60-120 degrees):
+/// vertices go onto the crease and are joined along it, so the sampled distance to the input
+/// falls by more than a third while the angles and areas keep their bars.
+#[test]
+fn creases_are_kept_on_the_lung_lobe() {
+    let mesh = load("closed_lung_rml_chaste.obj.gz");
+    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
+    let (_, plain) = remesh(&mesh, &options, &NoProgress).unwrap();
+    options.shape = options.shape.with_keep_creases(true);
+    let (kept, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let (p, k, s) = (&plain.quality, &rep.quality, &rep.shape);
+    eprintln!("plain: d_surf {:.3e}; creases: {:.3e}, {} vertices, {}/{} joined, {} freed", p.d_surface_sampled_relative, k.d_surface_sampled_relative, s.crease_vertices, s.crease_edges, s.crease_pairs, s.crease_released);
+    assert_eq!(plain.shape.crease_vertices, 0, "off by default");
+    assert!(k.d_surface_sampled_relative < 0.65 * p.d_surface_sampled_relative);
+    assert!(s.crease_vertices >= 50 && 4 * s.crease_edges >= 3 * s.crease_pairs, "{s:?}");
+    assert!(k.d_face_relative <= 0.035 && k.d_surface_vertex_relative < 1e-9 && k.zero_area_faces == 0, "{k:?}");
+    let a = angle_quality(&kept);
+    assert!(a.mean_min_angle_deg >= 48.0 && a.share_below_30 <= 0.02 && a.min_angle_deg >= 15.0, "{a:?}");
+}
+
+/// The hippocampal sheet's sharp edges are the steps of a segmentation, sharp between two
+/// input faces but not at the remesh's scale: `keep_creases` finds no crease there and the
+/// remesh is the one without it.
+#[test]
+fn a_staircase_is_not_a_crease() {
+    let mesh = load("open_hippocampus_sheet_hippunfold.obj.gz");
+    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
+    let (plain, _) = remesh(&mesh, &options, &NoProgress).unwrap();
+    options.shape = options.shape.with_keep_creases(true);
+    let (kept, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
+    assert_eq!(rep.shape.crease_vertices, 0, "{:?}", rep.shape);
+    assert_eq!(plain.faces, kept.faces);
+    assert_eq!(plain.vertices, kept.vertices);
+}

@@ -149,6 +149,11 @@ enum Command {
         /// collapses in the shape stage (they are on by default and give better angles).
         #[arg(long)]
         no_resample: bool,
+        /// Put vertices on the input's creases (edges bent by more than 60 degrees, in chains
+        /// of at least 3 edge lengths) and join them by edges: a lower surface distance on
+        /// surfaces with sharp edges, worse angles on staircased segmentations. Off by default.
+        #[arg(long)]
+        keep_creases: bool,
         /// Of an input in several pieces, remesh the largest whatever the others hold (by
         /// default only specks of at most 1% of the area are dropped, larger pieces refused).
         #[arg(long)]
@@ -322,7 +327,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let basis = basis.kind()?;
             shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, basis, groups, quiet: cli.quiet })
         }
-        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, area_steps, shape_weight, no_resample, largest_piece, sizing, figures, map } => {
+        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, area_steps, shape_weight, no_resample, keep_creases, largest_piece, sizing, figures, map } => {
             remesh_cmd::run(remesh_cmd::RemeshArgs {
                 input,
                 output,
@@ -339,6 +344,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 area_steps,
                 shape_weight,
                 no_resample,
+                keep_creases,
                 largest_piece,
                 sizing,
                 figures,

@@ -26,6 +26,7 @@ pub struct RemeshArgs {
     pub area_steps: usize,
     pub shape_weight: f64,
     pub no_resample: bool,
+    pub keep_creases: bool,
     pub largest_piece: bool,
     pub sizing: capmesh::Sizing,
     pub figures: Option<PathBuf>,
@@ -78,6 +79,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         area_steps,
         shape_weight,
         no_resample,
+        keep_creases,
         largest_piece,
         sizing,
         figures,
@@ -95,7 +97,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     let read_seconds = t_read.elapsed().as_secs_f64();
     let bar = cli_progress::Bar::new(quiet);
     let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-    let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_area_steps(area_steps).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing);
+    let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_area_steps(area_steps).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing).with_keep_creases(keep_creases);
     let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape);
     if largest_piece {
         options = options.with_pieces(capmesh::Pieces::Largest);

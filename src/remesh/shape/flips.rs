@@ -384,8 +384,15 @@ fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], old_tan: f64, cos_crease: f6
     // that one is folded back beyond FOLD_DEG, which is a fold of the remesh (the surface
     // sampled too coarsely there, as across the tip of an ear), not a crease of the input.
     let (old_bend, new_bend) = (bend_cos(x(a), x(b), x(c), x(d)), bend_cos(x(c), x(d), x(b), x(a)));
-    (old_bend >= cos_crease && new_bend >= cos_crease) || (old_bend < FOLD_DEG.to_radians().cos() && new_bend > old_bend)
+    // A sliver's normal is not the surface's: a pair holding one next to a crease vertex
+    // may be flipped into an unbent pair whatever its bend (three crease vertices nearly in
+    // line, `super::crease`).
+    let crease_sliver = old_tan < SLIVER_DEG.to_radians().tan() && [a, b, c, d].iter().any(|&v| mesh.role[v as usize] == super::state::Role::Crease);
+    (old_bend >= cos_crease && new_bend >= cos_crease) || (old_bend < FOLD_DEG.to_radians().cos() && new_bend > old_bend) || (crease_sliver && new_bend >= cos_crease)
 }
+
+/// A face whose smallest angle is below this (degrees) is a sliver for the crease bound.
+const SLIVER_DEG: f64 = 5.0;
 
 /// A pair of faces bent by more than this (degrees) is a fold of the remesh, not a crease.
 const FOLD_DEG: f64 = 120.0;

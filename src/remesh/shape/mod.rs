@@ -24,6 +24,7 @@
 
 pub(crate) mod bottom;
 pub(crate) mod boundary;
+pub(crate) mod crease;
 pub(crate) mod flips;
 pub(crate) mod global_area;
 pub(crate) mod polish;
@@ -73,11 +74,16 @@ pub struct ShapeOptions {
     pub crease_deg: f64,
     /// Face sizing (`super::sizing`): uniform (the default) or curvature-adapted.
     pub sizing: super::sizing::Sizing,
+    /// Put vertices on the input's creases (edges bent by more than `crease_deg`, in chains
+    /// of at least 3 edge lengths) and join them by edges (`crease`). Default off: it halved
+    /// the sampled distance of the lung lobe but ruined the angles of a staircased
+    /// segmentation (docs/method.md, "Creases").
+    pub keep_creases: bool,
 }
 
 impl Default for ShapeOptions {
     fn default() -> Self {
-        Self { relax_iterations: 40, polish_iterations: 85, area_steps: 6, resample: true, shape_weight: 0.1, area_sweeps: 0, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform }
+        Self { relax_iterations: 40, polish_iterations: 85, area_steps: 6, resample: true, shape_weight: 0.1, area_sweeps: 0, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform, keep_creases: false }
     }
 }
 
@@ -115,6 +121,11 @@ impl ShapeOptions {
     /// Set [`ShapeOptions::sizing`].
     pub fn with_sizing(mut self, sizing: super::sizing::Sizing) -> Self {
         self.sizing = sizing;
+        self
+    }
+    /// Set [`ShapeOptions::keep_creases`].
+    pub fn with_keep_creases(mut self, on: bool) -> Self {
+        self.keep_creases = on;
         self
     }
     /// Set [`ShapeOptions::crease_deg`].
@@ -169,6 +180,15 @@ pub struct ShapeReport {
     pub area_steps: usize,
     /// Boundary vertices put on the input's corners.
     pub corners_kept: usize,
+    /// Vertices put on the input's creases (`crease`, with [`ShapeOptions::keep_creases`]).
+    pub crease_vertices: usize,
+    /// Consecutive crease points joined by a remesh edge at the end of the stage...
+    pub crease_edges: usize,
+    /// ... of all such pairs.
+    pub crease_pairs: usize,
+    /// Crease vertices freed at faces still thin after the iterations
+    /// (`crease::RELEASE_BELOW_DEG`).
+    pub crease_released: usize,
     /// The face sizing used.
     pub sizing: super::sizing::Sizing,
     /// The remesh's angles before the stage.
@@ -290,7 +310,18 @@ pub(crate) fn optimize_shape(
     let mut cycle: Option<(Vec<u32>, Vec<u32>)> = None;
     let mut flipper: Option<flips::Flipper> = None;
     let mut area_solver = crate::linalg::SpdSolver::new();
+    let snap_creases = options.keep_creases;
+    let mut creases: Option<crease::CreaseSnap> = None;
     for it in 0..lloyd + options.polish_iterations {
+        // Creases once the resampling is over (vertex numbers stay from then on).
+        if snap_creases && it >= lloyd / 2 {
+            let snap = creases.get_or_insert_with(|| crease::CreaseSnap::new(input.lift, &crease::crease_chains(input.lift, crease, target_len * len_factor), target_len * len_factor));
+            let joined = snap.attempt(&mut mesh, input.lift);
+            report.flips += joined;
+            if joined > 0 {
+                flipper = None;
+            }
+        }
         let resampled = options.resample && it < lloyd / 2 && target_len > 0.0;
         if resampled {
             // Splits and collapses balance at a slightly different count than asked for:
@@ -374,6 +405,9 @@ pub(crate) fn optimize_shape(
     }
     if lloyd + options.polish_iterations > 0 {
         report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
+        if creases.is_some() {
+            report.crease_released = crease::release_thin(&mut mesh);
+        }
         report.sliver_removals = sliver::remove_sliver_vertices(&mut mesh);
         // A closed surface's bottom (no planar point) is below its rim ring.
         if mesh.has_plane.iter().any(|&p| !p) {
@@ -388,6 +422,10 @@ pub(crate) fn optimize_shape(
         let (moves, flips) = worst::raise_smallest_angles(&mut mesh, input.lift, &|t| targets[t], crease);
         report.angle_moves = moves;
         report.flips += flips;
+    }
+    if let Some(c) = &creases {
+        report.crease_vertices = c.placed(&mesh);
+        (report.crease_edges, report.crease_pairs) = c.joined(&mesh);
     }
     resample::compact(&mut mesh, &mut arc);
     let face_target = face_densities(&mesh.faces, &vertex_densities(&mesh, input.lift, input.density)).iter().map(|r| 1.0 / r).collect();

@@ -15,6 +15,8 @@ pub(crate) enum Role {
     Boundary,
     /// Stays (a closed surface's rim and bottom, a boundary corner).
     Fixed,
+    /// Stays on a crease of the input (`super::crease`).
+    Crease,
 }
 
 /// The inverse map as a lift from the plane to the surface: [`InverseMap::locate_plane`]
@@ -37,6 +39,11 @@ impl<'a> SurfaceLift<'a> {
         let f = self.inverse.mesh().faces[point.face];
         let w = point.barycentric;
         Some(w[0] * values[f[0] as usize] + w[1] * values[f[1] as usize] + w[2] * values[f[2] as usize])
+    }
+
+    /// The inverse map.
+    pub(crate) fn inverse(&self) -> &InverseMap<'a> {
+        self.inverse
     }
 
     /// The surface point of the planar point `q` and the face it lies in (an index of
@@ -105,7 +112,7 @@ impl Shaping {
         let mut classes: Vec<Vec<u32>> = Vec::new();
         let mut taken: Vec<bool> = Vec::new();
         for v in 0..n {
-            if self.role[v] == Role::Fixed || incidence.of(v).is_empty() {
+            if matches!(self.role[v], Role::Fixed | Role::Crease) || incidence.of(v).is_empty() {
                 continue;
             }
             taken.clear();

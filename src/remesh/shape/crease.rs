@@ -1,0 +1,502 @@
+//! Creases of the input kept by the remesh (ours; see [`super`]): remesh vertices put on the
+//! input's sharp edges and joined along them, as isotropic remeshers with feature edges do.
+//!
+//! A crease is a chain of input edges whose two faces' normals differ by more than the crease
+//! bound. The map is linear on each input face, so an input edge goes onto the segment
+//! between its ends' planar points, and a point at a fraction of the edge in the plane lifts to
+//! the same fraction of the edge on the surface: a vertex put there lies exactly on the
+//! crease. Along each chain long enough at the remesh's scale, points are spaced by about the
+//! remesh's edge length; the nearest free remesh vertex of each is moved onto it (when its
+//! faces stay valid) and stays there, and edge flips join consecutive ones. The flips' crease
+//! bound then keeps the joining edges.
+
+use super::smooth::{ring_faces_same_side, ring_valid_in_plane};
+use super::state::{third, Incidence, Role, Shaping, SurfaceLift};
+use crate::mesh::fasthash::FastMap;
+use crate::mesh::geometry::{cross, dot, norm, sub};
+
+/// A chain shorter than this many remesh edge lengths is not kept (a scanned surface's
+/// jags and short folds).
+const MIN_CHAIN_EDGES: f64 = 3.0;
+
+/// A vertex farther than this many edge lengths from a crease point is not moved onto it.
+const REACH: f64 = 0.75;
+
+/// A crease point this close (in edge lengths) to a vertex already on a crease takes that
+/// vertex (a junction of chains).
+const JUNCTION: f64 = 0.25;
+
+/// A crease point this close (in edge lengths) to a vertex on another crease point gets no
+/// vertex.
+const CROWDED: f64 = 0.6;
+
+/// A crease vertex of a face whose smallest angle is below this (degrees) at the end of the
+/// iterations is freed, for the sliver removal and the moves for shape
+/// ([`super::sliver`], [`super::worst`]).
+pub(crate) const RELEASE_BELOW_DEG: f64 = 15.0;
+
+/// The vertex of a crease point skipped as crowded.
+const SKIPPED: u32 = u32::MAX - 1;
+
+/// Halvings of a taken vertex's move towards its crease point.
+const HALVINGS: usize = 5;
+
+/// A point along a crease: planar and surface position.
+type CreasePoint = ([f64; 2], [f64; 3]);
+
+/// A crease must also bend by this share of the crease bound between the mean normals of
+/// the faces on its two sides within one remesh edge length: a staircased segmentation's
+/// steps bend sharply but not at the remesh's scale.
+const SCALE_SHARE: f64 = 0.75;
+
+/// The input's crease chains as input vertex lists (a closed loop repeats its first vertex
+/// last): edges whose faces are both mapped into the plane and bend by more than `crease`
+/// (radians), also at the scale `len` (see [`SCALE_SHARE`]), split at vertices where other
+/// than two such edges meet.
+pub(crate) fn crease_chains(lift: &SurfaceLift, crease: f64, len: f64) -> Vec<Vec<u32>> {
+    let inverse = lift.inverse();
+    let mesh = inverse.mesh();
+    let mut top = vec![false; mesh.faces.len()];
+    for &f in inverse.top_faces() {
+        top[f] = true;
+    }
+    let normal = |f: usize| {
+        let [a, b, c] = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
+        cross(sub(b, a), sub(c, a))
+    };
+    let cos_crease = crease.cos();
+    let centroids = CentroidGrid::new(mesh, len);
+    let mut sides: FastMap<(u32, u32), Vec<usize>> = FastMap::default();
+    for (f, face) in mesh.faces.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (face[k], face[(k + 1) % 3]);
+            sides.entry((a.min(b), a.max(b))).or_default().push(f);
+        }
+    }
+    let mut creases: Vec<(u32, u32)> = sides
+        .iter()
+        .filter(|(_, f)| f.len() == 2 && top[f[0]] && top[f[1]])
+        .filter(|(_, f)| {
+            let (n1, n2) = (normal(f[0]), normal(f[1]));
+            let l = norm(n1) * norm(n2);
+            l > 0.0 && dot(n1, n2) < cos_crease * l
+        })
+        .filter(|(&(a, b), f)| bends_at_scale(mesh, [a, b], [f[0], f[1]], &centroids, len, (SCALE_SHARE * crease).cos()))
+        .map(|(&e, _)| e)
+        .collect();
+    creases.sort_unstable();
+    let mut adjacent: FastMap<u32, Vec<u32>> = FastMap::default();
+    for &(a, b) in &creases {
+        adjacent.entry(a).or_default().push(b);
+        adjacent.entry(b).or_default().push(a);
+    }
+    for list in adjacent.values_mut() {
+        list.sort_unstable();
+    }
+    let degree = |v: u32| adjacent.get(&v).map_or(0, Vec::len);
+    let mut used: FastMap<(u32, u32), ()> = FastMap::default();
+    let mut chains = Vec::new();
+    // Chains from ends and junctions first, then the closed loops left.
+    let mut starts: Vec<u32> = adjacent.keys().copied().filter(|&v| degree(v) != 2).collect();
+    starts.sort_unstable();
+    let mut loops: Vec<u32> = adjacent.keys().copied().filter(|&v| degree(v) == 2).collect();
+    loops.sort_unstable();
+    for start in starts.into_iter().chain(loops) {
+        for &first in &adjacent[&start] {
+            if used.contains_key(&(start.min(first), start.max(first))) {
+                continue;
+            }
+            let mut chain = vec![start];
+            let (mut prev, mut at) = (start, first);
+            loop {
+                used.insert((prev.min(at), prev.max(at)), ());
+                chain.push(at);
+                if at == start || degree(at) != 2 {
+                    break;
+                }
+                let Some(&next) = adjacent[&at].iter().find(|&&u| u != prev && !used.contains_key(&(at.min(u), at.max(u)))) else { break };
+                (prev, at) = (at, next);
+            }
+            chains.push(chain);
+        }
+    }
+    chains
+}
+
+/// The input's faces by their centroids in cubes of side `cell`.
+struct CentroidGrid {
+    cell: f64,
+    cubes: FastMap<[i64; 3], Vec<u32>>,
+    centroid: Vec<[f64; 3]>,
+}
+
+impl CentroidGrid {
+    fn new(mesh: &crate::mesh::TriMesh, cell: f64) -> Self {
+        let centroid: Vec<[f64; 3]> = mesh.faces.iter().map(|f| {
+            let [a, b, c] = f.map(|v| mesh.vertices[v as usize]);
+            [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
+        }).collect();
+        let mut cubes: FastMap<[i64; 3], Vec<u32>> = FastMap::default();
+        if cell > 0.0 {
+            for (f, c) in centroid.iter().enumerate() {
+                cubes.entry(c.map(|x| (x / cell).floor() as i64)).or_default().push(f as u32);
+            }
+        }
+        Self { cell, cubes, centroid }
+    }
+
+    /// The faces whose centroids are within `cell` of `x`.
+    fn near(&self, x: [f64; 3]) -> impl Iterator<Item = u32> + '_ {
+        let c = x.map(|v| (v / self.cell).floor() as i64);
+        (0..27).flat_map(move |k| {
+            let key = [c[0] + k % 3 - 1, c[1] + (k / 3) % 3 - 1, c[2] + k / 9 - 1];
+            self.cubes.get(&key).map_or(&[][..], |l| &l[..]).iter().copied()
+        })
+        .filter(move |&f| norm(sub(self.centroid[f as usize], x)) <= self.cell)
+    }
+}
+
+/// Whether the input edge `[a, b]` with faces `[f1, f2]` bends at the scale `len`: the
+/// area-weighted mean normals of the faces within `len` of its midpoint, on `f1`'s side and on
+/// `f2`'s side of the plane through the edge that bisects it, have a cosine below `cos_bound`.
+fn bends_at_scale(mesh: &crate::mesh::TriMesh, [a, b]: [u32; 2], [f1, f2]: [usize; 2], grid: &CentroidGrid, len: f64, cos_bound: f64) -> bool {
+    if !(len > 0.0) {
+        return true;
+    }
+    let normal = |f: usize| {
+        let [p, q, r] = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
+        cross(sub(q, p), sub(r, p))
+    };
+    let unit = |v: [f64; 3]| {
+        let l = norm(v);
+        v.map(|c| c / l)
+    };
+    let (n1, n2) = (unit(normal(f1)), unit(normal(f2)));
+    let (xa, xb) = (mesh.vertices[a as usize], mesh.vertices[b as usize]);
+    let mid = [0, 1, 2].map(|k| 0.5 * (xa[k] + xb[k]));
+    let split = sub(n1, n2);
+    let side_of_f1 = dot(sub(grid.centroid[f1], mid), split).signum();
+    let (mut s1, mut s2) = ([0.0; 3], [0.0; 3]);
+    for f in grid.near(mid) {
+        let n = normal(f as usize);
+        let s = if dot(sub(grid.centroid[f as usize], mid), split).signum() == side_of_f1 { &mut s1 } else { &mut s2 };
+        for k in 0..3 {
+            s[k] += n[k];
+        }
+    }
+    let l = norm(s1) * norm(s2);
+    l > 0.0 && dot(s1, s2) < cos_bound * l
+}
+
+/// Points along `chain` spaced by about `len` (both ends included), planar and on the
+/// surface; none for a chain shorter than [`MIN_CHAIN_EDGES`] edge lengths.
+fn chain_points(lift: &SurfaceLift, chain: &[u32], len: f64) -> Vec<CreasePoint> {
+    let inverse = lift.inverse();
+    let (x, p) = (&inverse.mesh().vertices, &inverse.map().plane);
+    let mut arc = vec![0.0];
+    for w in chain.windows(2) {
+        let l = norm(sub(x[w[1] as usize], x[w[0] as usize]));
+        arc.push(arc.last().copied().unwrap_or(0.0) + l);
+    }
+    let total = *arc.last().unwrap_or(&0.0);
+    if !(total >= MIN_CHAIN_EDGES * len) {
+        return Vec::new();
+    }
+    let n = (total / len).round().max(1.0) as usize;
+    let closed = chain.first() == chain.last();
+    let count = if closed { n } else { n + 1 };
+    (0..count)
+        .map(|k| {
+            let s = total * k as f64 / n as f64;
+            let i = arc.partition_point(|&a| a <= s).saturating_sub(1).min(chain.len() - 2);
+            let seg = arc[i + 1] - arc[i];
+            let t = if seg > 0.0 { ((s - arc[i]) / seg).clamp(0.0, 1.0) } else { 0.0 };
+            let (a, b) = (chain[i] as usize, chain[i + 1] as usize);
+            ([0, 1].map(|c| p[a][c] + t * (p[b][c] - p[a][c])), [0, 1, 2].map(|c| x[a][c] + t * (x[b][c] - x[a][c])))
+        })
+        .collect()
+}
+
+/// The crease points of a remesh and the vertex put on each (see the module docs).
+pub(crate) struct CreaseSnap {
+    /// Each chain's points: planar point, surface point and the vertex on it (`u32::MAX`:
+    /// none yet, [`SKIPPED`]: none), and whether the chain is a closed loop.
+    runs: Vec<(Vec<(CreasePoint, u32)>, bool)>,
+    /// The remesh's edge length.
+    len: f64,
+}
+
+impl CreaseSnap {
+    /// The points along the creases `chains` spaced by about `len` (the remesh's edge length).
+    pub(crate) fn new(lift: &SurfaceLift, chains: &[Vec<u32>], len: f64) -> Self {
+        let runs = if len > 0.0 {
+            chains
+                .iter()
+                .map(|chain| (chain_points(lift, chain, len).into_iter().map(|p| (p, u32::MAX)).collect::<Vec<_>>(), chain.first() == chain.last()))
+                .filter(|(points, _)| !points.is_empty())
+                .collect()
+        } else {
+            Vec::new()
+        };
+        Self { runs, len }
+    }
+
+    /// Consecutive crease points joined by an edge of `mesh`, and all such pairs.
+    pub(crate) fn joined(&self, mesh: &Shaping) -> (usize, usize) {
+        let edges = super::state::edge_faces(&mesh.faces);
+        let (mut joined, mut pairs) = (0, 0);
+        for (points, closed) in &self.runs {
+            let m = points.len();
+            for k in 0..if *closed { m } else { m.saturating_sub(1) } {
+                let (u, w) = (points[k].1, points[(k + 1) % m].1);
+                pairs += 1;
+                joined += usize::from(edges.contains_key(&(u.min(w), u.max(w))));
+            }
+        }
+        (joined, pairs)
+    }
+
+    /// Vertices on their crease points.
+    pub(crate) fn placed(&self, mesh: &Shaping) -> usize {
+        self.runs.iter().flat_map(|(points, _)| points).filter(|((q, _), v)| *v < SKIPPED && mesh.plane[*v as usize] == *q).count()
+    }
+
+    /// Move free vertices of `mesh` onto the points that have none yet (the nearest whose
+    /// faces stay valid; it takes the role [`Role::Crease`]), then join consecutive placed
+    /// points by edge flips. Returns the edges flipped.
+    pub(crate) fn attempt(&mut self, mesh: &mut Shaping, lift: &SurfaceLift) -> usize {
+        let len = self.len;
+        if self.runs.is_empty() {
+            return 0;
+        }
+        let cell = |x: [f64; 3]| x.map(|c| (c / len).floor() as i64);
+        let incidence: Incidence = mesh.incidence();
+        let mut grid: FastMap<[i64; 3], Vec<u32>> = FastMap::default();
+        // Free vertices with faces (a collapsed vertex has none).
+        for v in 0..mesh.plane.len() {
+            if mesh.role[v] == Role::Free && mesh.planar(v as u32) && !incidence.of(v).is_empty() {
+                grid.entry(cell(mesh.position[v])).or_default().push(v as u32);
+            }
+        }
+        let placed: Vec<u32> = self.runs.iter().flat_map(|(points, _)| points).map(|(_, v)| *v).filter(|&v| v < SKIPPED).collect();
+        let mut placed = placed;
+        for (points, _) in &mut self.runs {
+            for ((_, x), at) in points.iter_mut() {
+                if *at != u32::MAX {
+                    continue;
+                }
+                // A junction shared with another chain: the vertex already there. A point
+                // crowded by another crease's vertex (parallel creases closer than an edge
+                // length, points next to a junction) is skipped for good.
+                let nearest = placed.iter().map(|&v| (norm(sub(mesh.position[v as usize], *x)), v)).min_by(|a, b| a.0.total_cmp(&b.0));
+                match nearest {
+                    Some((d, v)) if d < JUNCTION * len => {
+                        *at = v;
+                        continue;
+                    }
+                    Some((d, _)) if d < CROWDED * len => {
+                        *at = SKIPPED;
+                        continue;
+                    }
+                    _ => {}
+                }
+                let c = cell(*x);
+                let mut near: Vec<(f64, u32)> = Vec::new();
+                for dx in -1..=1 {
+                    for dy in -1..=1 {
+                        for dz in -1..=1 {
+                            for &v in grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]).map_or(&[][..], |l| &l[..]) {
+                                let d = norm(sub(mesh.position[v as usize], *x));
+                                if d <= REACH * len && mesh.role[v as usize] == Role::Free {
+                                    near.push((d, v));
+                                }
+                            }
+                        }
+                    }
+                }
+                // The nearest free vertex is taken; it travels onto the point over the
+                // iterations (see below).
+                if let Some(&(_, v)) = near.iter().min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))) {
+                    mesh.role[v as usize] = Role::Crease;
+                    placed.push(v);
+                    *at = v;
+                }
+            }
+        }
+        // Each taken vertex moves onto its point, or as far towards it as its faces allow
+        // (halving the move; it stays on the surface, lifted through the map).
+        for (points, _) in &self.runs {
+            for &((q, x), v) in points {
+                if v >= SKIPPED || mesh.plane[v as usize] == q {
+                    continue;
+                }
+                let (v, q0) = (v as usize, mesh.plane[v as usize]);
+                let ring = incidence.of(v);
+                let mut step = 1.0;
+                for _ in 0..=HALVINGS {
+                    let p = [q0[0] + step * (q[0] - q0[0]), q0[1] + step * (q[1] - q0[1])];
+                    let lifted = if step == 1.0 { Some((x, mesh.hint[v])) } else { lift.lift(p, mesh.hint[v]) };
+                    if let Some((y, h)) = lifted {
+                        if ring_valid_in_plane(mesh, ring, v, p) && ring_faces_same_side(mesh, ring, v, y) {
+                            mesh.plane[v] = p;
+                            mesh.position[v] = y;
+                            mesh.hint[v] = h;
+                            break;
+                        }
+                    }
+                    step *= 0.5;
+                }
+            }
+        }
+        let mut flips = 0;
+        let edges = super::state::edge_faces(&mesh.faces);
+        for (points, closed) in &self.runs {
+            let m = points.len();
+            let pairs = if *closed { m } else { m.saturating_sub(1) };
+            for k in 0..pairs {
+                let (u, w) = (points[k].1, points[(k + 1) % m].1);
+                if u < SKIPPED && w < SKIPPED && u != w && !edges.contains_key(&(u.min(w), u.max(w))) {
+                    flips += join(mesh, u, w);
+                }
+            }
+        }
+        flips
+    }
+}
+
+/// Free the crease vertices of the faces of `mesh` below [`RELEASE_BELOW_DEG`]: a thin face
+/// costs more than a point off the crease. Returns the vertices freed.
+pub(crate) fn release_thin(mesh: &mut Shaping) -> usize {
+    let thin = super::state::thin_face_vertices(mesh, RELEASE_BELOW_DEG.to_radians(), |v| mesh.role[v as usize] == Role::Crease);
+    for &v in &thin {
+        mesh.role[v as usize] = Role::Free;
+    }
+    thin.len()
+}
+
+/// Flips tried to join two crease points.
+const MAX_JOIN_FLIPS: usize = 8;
+
+/// Make `(u, w)` an edge of `mesh` by flipping the edges that the planar segment `u -> w`
+/// crosses, each only when both its new faces are oriented in the plane (so the planar mesh
+/// stays an embedding). Returns the flips made.
+fn join(mesh: &mut Shaping, u: u32, w: u32) -> usize {
+    if ![u, w].iter().all(|&v| mesh.planar(v)) {
+        return 0;
+    }
+    let mut flips = 0;
+    for _ in 0..MAX_JOIN_FLIPS {
+        let crossed = crossed_edges(mesh, u, w);
+        let Some(crossed) = crossed else { return flips };
+        let mut flipped = false;
+        for (t1, t2, a, b) in crossed {
+            // t1 = (c, a, b) runs a -> b, t2 runs b -> a with corner d.
+            let (Some(c), Some(d)) = (third(mesh.faces[t1], a, b), third(mesh.faces[t2], b, a)) else { continue };
+            if ![a, b, c, d].iter().all(|&v| mesh.planar(v)) {
+                continue;
+            }
+            let p = |v: u32| mesh.plane[v as usize];
+            if mesh.oriented(p(c), p(a), p(d), 0.0) && mesh.oriented(p(d), p(b), p(c), 0.0) && !mesh.faces.iter().any(|f| f.contains(&c) && f.contains(&d)) {
+                mesh.faces[t1] = [c, a, d];
+                mesh.faces[t2] = [d, b, c];
+                flips += 1;
+                flipped = true;
+                break;
+            }
+        }
+        if !flipped {
+            return flips;
+        }
+    }
+    flips
+}
+
+/// The edges `(a, b)` that the planar segment `u -> w` crosses, in order from `u`, each with
+/// its face running `a -> b` and the one running `b -> a`: `None` when `(u, w)` is an edge
+/// already or the walk does not reach `w`.
+fn crossed_edges(mesh: &Shaping, u: u32, w: u32) -> Option<Vec<(usize, usize, u32, u32)>> {
+    let faces = &mesh.faces;
+    let p = |v: u32| mesh.plane[v as usize];
+    let side = |a: u32, b: u32, q: [f64; 2]| crate::mesh::geometry::signed_area_2d(p(a), p(b), q) * mesh.orientation;
+    let (pu, pw) = (p(u), p(w));
+    let at_u: Vec<usize> = (0..faces.len()).filter(|&t| faces[t].contains(&u)).collect();
+    if at_u.iter().any(|&t| faces[t].contains(&w)) {
+        return None;
+    }
+    // The face of u whose opposite edge (a, b) the segment leaves through.
+    let mut current = at_u.iter().find_map(|&t| {
+        let f = faces[t];
+        let k = f.iter().position(|&x| x == u)?;
+        let (a, b) = (f[(k + 1) % 3], f[(k + 2) % 3]);
+        // w beyond (a, b), between the rays u -> a and u -> b.
+        (side(u, a, pw) > 0.0 && side(b, u, pw) > 0.0 && side(a, b, pw) < 0.0).then_some((t, a, b))
+    })?;
+    let mut out = Vec::new();
+    for _ in 0..64 {
+        let (t, a, b) = current;
+        let t2 = (0..faces.len()).find(|&s| s != t && third(faces[s], b, a).is_some())?;
+        out.push((t, t2, a, b));
+        let c = third(faces[t2], b, a)?;
+        if c == w {
+            return Some(out);
+        }
+        // Leave t2 = (b, a, c) through (a, c) or (c, b): the side of the segment c lies on.
+        let s = crate::mesh::geometry::signed_area_2d(pu, pw, p(c)) * mesh.orientation;
+        current = if s > 0.0 { (t2, a, c) } else { (t2, c, b) };
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::TriMesh;
+
+    /// A strip along x of `n` x 2 quads whose cross-section (y, z) is the profile `profile`:
+    /// vertex rows at the profile's points, two triangles per quad.
+    fn strip(profile: &[[f64; 2]], n: usize) -> TriMesh {
+        let m = profile.len();
+        let vertices = (0..=n).flat_map(|i| profile.iter().map(move |p| [i as f64 * 0.1, p[0], p[1]])).collect();
+        let mut faces = Vec::new();
+        for i in 0..n as u32 {
+            for j in 0..m as u32 - 1 {
+                let (a, b, c, d) = (i * m as u32 + j, i * m as u32 + j + 1, (i + 1) * m as u32 + j, (i + 1) * m as u32 + j + 1);
+                faces.push([a, c, b]);
+                faces.push([b, c, d]);
+            }
+        }
+        TriMesh::new(vertices, faces)
+    }
+
+    /// The faces of `mesh` on either side of its edge `(a, b)`.
+    fn sides(mesh: &TriMesh, a: u32, b: u32) -> [usize; 2] {
+        let f: Vec<usize> = (0..mesh.faces.len()).filter(|&t| mesh.faces[t].contains(&a) && mesh.faces[t].contains(&b)).collect();
+        [f[0], f[1]]
+    }
+
+    /// A roof (two planes meeting at 90 degrees) bends at any scale; a staircase of steps
+    /// 0.1 wide bends by 90 degrees at each step but not at the scale 1.
+    #[test]
+    fn a_roof_bends_at_scale_and_a_staircase_does_not() {
+        let cos_bound = (SCALE_SHARE * 60f64.to_radians()).cos();
+        let roof: Vec<[f64; 2]> = (-10..=10).map(|k| [k as f64 * 0.1, -(k as f64).abs() * 0.1]).collect();
+        let mesh = strip(&roof, 40);
+        let ridge = (20 * roof.len() + 10) as u32;
+        let grid = CentroidGrid::new(&mesh, 1.0);
+        assert!(bends_at_scale(&mesh, [ridge, ridge + roof.len() as u32], sides(&mesh, ridge, ridge + roof.len() as u32), &grid, 1.0, cos_bound));
+        // Steps: up 0.1, across 0.1, up 0.1, ...
+        let stairs: Vec<[f64; 2]> = (0..=20).map(|k| [((k + 1) / 2) as f64 * 0.1, (k / 2) as f64 * 0.1]).collect();
+        let mesh = strip(&stairs, 40);
+        let step = (20 * stairs.len() + 10) as u32;
+        let [f1, f2] = sides(&mesh, step, step + stairs.len() as u32);
+        let (n1, n2) = (normal_of(&mesh, f1), normal_of(&mesh, f2));
+        assert!(dot(n1, n2).abs() < 1e-9 * norm(n1) * norm(n2), "the step itself bends by 90 degrees");
+        let grid = CentroidGrid::new(&mesh, 1.0);
+        assert!(!bends_at_scale(&mesh, [step, step + stairs.len() as u32], [f1, f2], &grid, 1.0, cos_bound));
+    }
+
+    fn normal_of(mesh: &TriMesh, f: usize) -> [f64; 3] {
+        let [a, b, c] = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
+        cross(sub(b, a), sub(c, a))
+    }
+}
