@@ -278,8 +278,9 @@ impl CreaseSnap {
                 grid.entry(cell(mesh.position[v])).or_default().push(v as u32);
             }
         }
-        let placed: Vec<u32> = self.runs.iter().flat_map(|(points, _)| points).map(|(_, v)| *v).filter(|&v| v < SKIPPED).collect();
-        let mut placed = placed;
+        // The points that have a vertex, and it (judged by the point: the vertex may still
+        // be on its way).
+        let mut placed: Vec<([f64; 3], u32)> = self.runs.iter().flat_map(|(points, _)| points).filter(|(_, v)| *v < SKIPPED).map(|((_, x), v)| (*x, *v)).collect();
         for (points, _) in &mut self.runs {
             for ((_, x), at) in points.iter_mut() {
                 if *at != u32::MAX {
@@ -288,7 +289,7 @@ impl CreaseSnap {
                 // A junction shared with another chain: the vertex already there. A point
                 // crowded by another crease's vertex (parallel creases closer than an edge
                 // length, points next to a junction) is skipped for good.
-                let nearest = placed.iter().map(|&v| (norm(sub(mesh.position[v as usize], *x)), v)).min_by(|a, b| a.0.total_cmp(&b.0));
+                let nearest = placed.iter().map(|&(y, v)| (norm(sub(y, *x)), v)).min_by(|a, b| a.0.total_cmp(&b.0));
                 match nearest {
                     Some((d, v)) if d < JUNCTION * len => {
                         *at = v;
@@ -318,16 +319,18 @@ impl CreaseSnap {
                 // iterations (see below).
                 if let Some(&(_, v)) = near.iter().min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))) {
                     mesh.role[v as usize] = Role::Crease;
-                    placed.push(v);
+                    placed.push((*x, v));
                     *at = v;
                 }
             }
         }
         // Each taken vertex moves onto its point, or as far towards it as its faces allow
-        // (halving the move; it stays on the surface, lifted through the map).
+        // (halving the move; it stays on the surface, lifted through the map). A vertex
+        // shared at a junction goes to its first point.
+        let mut seen = vec![false; mesh.plane.len()];
         for (points, _) in &self.runs {
             for &((q, x), v) in points {
-                if v >= SKIPPED || mesh.plane[v as usize] == q {
+                if v >= SKIPPED || std::mem::replace(&mut seen[v as usize], true) || mesh.plane[v as usize] == q {
                     continue;
                 }
                 let (v, q0) = (v as usize, mesh.plane[v as usize]);
