@@ -404,8 +404,8 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     assert_eq!(o.optimize, CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA);
     let shape = capmesh::remesh::shape::ShapeOptions::default();
     assert_eq!(
-        (o.relax_iterations as usize, o.polish_iterations as usize, o.area_steps as usize, o.shape_weight, o.resample != 0),
-        (shape.relax_iterations, shape.polish_iterations, shape.area_steps, shape.shape_weight, shape.resample)
+        (o.relax_iterations as usize, o.polish_iterations as usize, o.area_steps as usize, o.shape_weight, o.resample != 0, o.keep_creases != 0),
+        (shape.relax_iterations, shape.polish_iterations, shape.area_steps, shape.shape_weight, shape.resample, shape.keep_creases)
     );
     o.faces = 2000;
     let run = |o: &capmesh_v1_remesh_options| {
@@ -459,6 +459,9 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     let mut bad = capmesh_v1_remesh_options_default();
     bad.resample = 2;
     refused(&bad, "resample = 2");
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.keep_creases = -1;
+    refused(&bad, "keep_creases = -1");
     let mut bad = capmesh_v1_remesh_options_default();
     bad.sizing_strength = -1.0;
     refused(&bad, "sizing_strength = -1");

@@ -359,7 +359,8 @@ fn thin_faces_are_moved_for_shape() {
     assert!(rep.quality.d_face_relative <= 0.035, "{}", rep.quality.d_face_relative);
 }
 
-/// `ShapeOptions::keep_creases` on the lung lobe (a fissure edge bent by 60-120 degrees):
+/// `ShapeOptions::keep_creases` on the lung lobe (a sharp edge, its faces' normals more than
+/// 60 degrees apart):
 /// vertices go onto the crease and are joined along it, so the sampled distance to the input
 /// falls by more than a third while the angles and areas keep their bars.
 #[test]

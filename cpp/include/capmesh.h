@@ -354,6 +354,11 @@ typedef struct capmesh_v1_remesh_options {
    * at once, one every 5 polish iterations from the first; 0 = none). Default 6.
    */
   uint32_t area_steps;
+  /**
+   * 1 = put vertices on the input's creases and join them by edges (the CLI's
+   * `--keep-creases`); 0 = off (default).
+   */
+  int32_t keep_creases;
 } capmesh_v1_remesh_options;
 
 /**

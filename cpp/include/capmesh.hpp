@@ -184,6 +184,12 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     sizing_strength = strength;
     return *this;
   }
+  /// Put vertices on the input's creases and join them by edges (the CLI's
+  /// `--keep-creases`).
+  RemeshOptions &with_keep_creases(bool on) {
+    keep_creases = on ? 1 : 0;
+    return *this;
+  }
   /// Uniform grid of about `faces` faces.
   static RemeshOptions uniform(uint32_t faces) {
     RemeshOptions o;

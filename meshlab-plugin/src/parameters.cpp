@@ -119,6 +119,11 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 		"0: uniform, equal areas (the default). A strength > 0: smaller faces where the surface "
 		"is curved, for a smaller distance to the input at the same face count (3 is the "
 		"command line's --sizing curvature)."));
+	list.addParam(RichBool(
+		"KeepCreases", d.keep_creases != 0, "Keep creases (shape+area)",
+		"Put vertices on the input's sharp edges (faces bent by more than 60 degrees, also at the "
+		"remesh's scale) and join them by edges: a smaller distance to the input on surfaces with "
+		"real sharp edges; off by default (a finely remeshed segmentation's steps count too)."));
 	addParamOptions(list, d.param);
 }
 
@@ -140,6 +145,7 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 	o.shape_weight = double(list.getFloat("ShapeWeight"));
 	o.resample = list.getBool("Resample") ? 1 : 0;
 	o.sizing_strength = double(list.getFloat("SizingStrength"));
+	o.keep_creases = list.getBool("KeepCreases") ? 1 : 0;
 	o.param = readParamOptions(list);
 	return o;
 }

@@ -57,6 +57,14 @@ def test_remesh_equals_cli(cli, tmp_path):
     assert crep["quality"]["d_face"] == curved["d_face"] != expected["d_face"]
     with pytest.raises(capmesh.InputError, match="unknown sizing"):
         capmesh.remesh(v, f, faces_target=1000, sizing="bumpy")
+
+    # The keep_creases keyword is the CLI's --keep-creases.
+    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet", "--keep-creases")
+    assert done.returncode == 0, done.stderr
+    creased = json.loads(report.read_text())
+    kv, kf, krep = capmesh.remesh(v, f, faces_target=1000, keep_creases=True)
+    assert krep["shape"]["crease_vertices"] == creased["shape"]["crease_vertices"]
+    assert krep["quality"]["d_face"] == creased["d_face"]
     cli_v, cli_f = capmesh.read_mesh(out)
 
     # metrics() is `capmesh metrics --json`.

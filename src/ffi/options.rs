@@ -107,6 +107,9 @@ pub struct capmesh_v1_remesh_options {
     /// Global area steps of the polish (Gauss-Newton steps of the area term over all vertices
     /// at once, one every 5 polish iterations from the first; 0 = none). Default 6.
     pub area_steps: u32,
+    /// 1 = put vertices on the input's creases and join them by edges (the CLI's
+    /// `--keep-creases`); 0 = off (default).
+    pub keep_creases: i32,
 }
 
 /// The defaults documented on each field.
@@ -143,6 +146,7 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
             Sizing::Uniform => 0.0,
             Sizing::Curvature { strength } => strength,
         },
+        keep_creases: i32::from(shape.keep_creases),
     }
 }
 
@@ -229,6 +233,11 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         1 => true,
         r => return Err(Failure::invalid_argument(format!("resample = {r} is not 0 (off) or 1 (on)"))),
     };
+    let keep_creases = match o.keep_creases {
+        0 => false,
+        1 => true,
+        k => return Err(Failure::invalid_argument(format!("keep_creases = {k} is not 0 (off) or 1 (on)"))),
+    };
     let sizing = match finite("sizing_strength", o.sizing_strength)? {
         s if s == 0.0 => Sizing::Uniform,
         s if s > 0.0 => Sizing::Curvature { strength: s },
@@ -240,7 +249,8 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         .with_polish_iterations(o.polish_iterations as usize)
         .with_area_steps(o.area_steps as usize)
         .with_shape_weight(shape_weight)
-        .with_resample(resample);
+        .with_resample(resample)
+        .with_keep_creases(keep_creases);
     Ok(RemeshOptions {
         grid,
         param: param_options(&o.param)?,
