@@ -75,9 +75,9 @@ pub struct ShapeOptions {
     /// Face sizing (`super::sizing`): uniform (the default) or curvature-adapted.
     pub sizing: super::sizing::Sizing,
     /// Put vertices on the input's creases (edges bent by more than `crease_deg`, in chains
-    /// of at least 3 edge lengths) and join them by edges (`crease`). Default off: it halved
-    /// the sampled distance of the lung lobe but ruined the angles of a staircased
-    /// segmentation (docs/method.md, "Creases").
+    /// of at least 3 edge lengths) and join them by edges (`crease`). Default off: it more
+    /// than halved the lung lobe's sampled distance, but a segmentation remeshed finer than
+    /// its steps takes the steps for creases (docs/method.md, "21. Creases").
     pub keep_creases: bool,
 }
 
@@ -182,9 +182,9 @@ pub struct ShapeReport {
     pub corners_kept: usize,
     /// Vertices put on the input's creases (`crease`, with [`ShapeOptions::keep_creases`]).
     pub crease_vertices: usize,
-    /// Consecutive crease points joined by a remesh edge at the end of the stage...
+    /// Pairs of consecutive crease points joined by a remesh edge at the end of the stage.
     pub crease_edges: usize,
-    /// ... of all such pairs.
+    /// Pairs of consecutive crease points, joined or not.
     pub crease_pairs: usize,
     /// Crease vertices freed at faces still thin after the iterations
     /// (`crease::RELEASE_BELOW_DEG`).
