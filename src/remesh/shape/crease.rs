@@ -500,6 +500,39 @@ mod tests {
         assert!(!bends_at_scale(&mesh, [step, step + stairs.len() as u32], [f1, f2], &grid, 1.0, cos_bound));
     }
 
+    /// A fan of thin triangles between u = (0, 0) and w = (3, 0): the segment u -> w crosses
+    /// the edges (a_k, b_k) of a strip of three quads; `join` flips them until (u, w) is an
+    /// edge, every face still oriented in the plane.
+    #[test]
+    fn join_flips_the_crossed_edges() {
+        // u = 0, w = 1, a_k = 2 + k above (y = 1), b_k = 5 + k below (y = -1), k = 0..3, at
+        // x = 0.5, 1.5, 2.5.
+        let mut plane = vec![[0.0, 0.0], [3.0, 0.0]];
+        plane.extend((0..3).map(|k| [0.5 + k as f64, 1.0]));
+        plane.extend((0..3).map(|k| [0.5 + k as f64, -1.0]));
+        let (a, b) = (|k: u32| 2 + k, |k: u32| 5 + k);
+        // u's face, the strip's quads split along (a_k, b_k) and (a_k, b_{k+1}), w's face.
+        let mut faces = vec![[0, b(0), a(0)]];
+        for k in 0..2 {
+            faces.push([a(k), b(k), b(k + 1)]);
+            faces.push([a(k), b(k + 1), a(k + 1)]);
+        }
+        faces.push([a(2), b(2), 1]);
+        let position = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        let n = plane.len();
+        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; n], role: vec![Role::Free; n], has_plane: vec![true; n], orientation: 1.0 };
+        let area = |m: &Shaping| m.faces.iter().map(|f| crate::mesh::geometry::signed_area_2d(m.plane[f[0] as usize], m.plane[f[1] as usize], m.plane[f[2] as usize])).sum::<f64>();
+        let before = area(&mesh);
+        assert!(mesh.faces.iter().all(|f| mesh.oriented(mesh.plane[f[0] as usize], mesh.plane[f[1] as usize], mesh.plane[f[2] as usize], 0.0)));
+        let flips = join(&mut mesh, 0, 1);
+        assert!(flips >= 3, "{flips} flips");
+        assert!(mesh.faces.iter().any(|f| f.contains(&0) && f.contains(&1)), "{:?}", mesh.faces);
+        assert!(mesh.faces.iter().all(|f| mesh.oriented(mesh.plane[f[0] as usize], mesh.plane[f[1] as usize], mesh.plane[f[2] as usize], 0.0)), "{:?}", mesh.faces);
+        assert!((area(&mesh) - before).abs() < 1e-12, "the faces still tile the same region");
+        // Joined already: nothing more to flip.
+        assert_eq!(join(&mut mesh, 0, 1), 0);
+    }
+
     fn normal_of(mesh: &TriMesh, f: usize) -> [f64; 3] {
         let [a, b, c] = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
         cross(sub(b, a), sub(c, a))
