@@ -354,14 +354,14 @@ impl CreaseSnap {
             }
         }
         let mut flips = 0;
-        let edges = super::state::edge_faces(&mesh.faces);
+        let mut around = Around::new(mesh);
         for (points, closed) in &self.runs {
             let m = points.len();
             let pairs = if *closed { m } else { m.saturating_sub(1) };
             for k in 0..pairs {
                 let (u, w) = (points[k].1, points[(k + 1) % m].1);
-                if u < SKIPPED && w < SKIPPED && u != w && !edges.contains_key(&(u.min(w), u.max(w))) {
-                    flips += join(mesh, u, w);
+                if u < SKIPPED && w < SKIPPED && u != w && !around.joined(mesh, u, w) {
+                    flips += join(mesh, &mut around, u, w);
                 }
             }
         }
@@ -382,17 +382,57 @@ pub(crate) fn release_thin(mesh: &mut Shaping) -> usize {
 /// Flips tried to join two crease points.
 const MAX_JOIN_FLIPS: usize = 8;
 
+/// The faces around each vertex, kept up to date through the joining flips.
+struct Around(Vec<Vec<u32>>);
+
+impl Around {
+    fn new(mesh: &Shaping) -> Self {
+        let mut around = vec![Vec::new(); mesh.plane.len()];
+        for (t, f) in mesh.faces.iter().enumerate() {
+            for &v in f {
+                around[v as usize].push(t as u32);
+            }
+        }
+        Self(around)
+    }
+
+    /// The faces around `v`.
+    fn of(&self, v: u32) -> &[u32] {
+        &self.0[v as usize]
+    }
+
+    /// Whether `(u, w)` is an edge of `mesh`.
+    fn joined(&self, mesh: &Shaping, u: u32, w: u32) -> bool {
+        self.of(u).iter().any(|&t| mesh.faces[t as usize].contains(&w))
+    }
+
+    /// The face running `b -> a` (`None` on the boundary).
+    fn running(&self, mesh: &Shaping, b: u32, a: u32) -> Option<usize> {
+        self.of(b).iter().map(|&t| t as usize).find(|&t| third(mesh.faces[t], b, a).is_some())
+    }
+
+    /// Flip the edge `(a, b)` of faces `t1 = (c, a, b)` and `t2 = (d, b, a)` into `(c, d)`.
+    fn flip(&mut self, mesh: &mut Shaping, [t1, t2]: [usize; 2], [a, b, c, d]: [u32; 4]) {
+        mesh.faces[t1] = [c, a, d];
+        mesh.faces[t2] = [d, b, c];
+        let (t1, t2) = (t1 as u32, t2 as u32);
+        self.0[a as usize].retain(|&t| t != t2);
+        self.0[b as usize].retain(|&t| t != t1);
+        self.0[c as usize].push(t2);
+        self.0[d as usize].push(t1);
+    }
+}
+
 /// Make `(u, w)` an edge of `mesh` by flipping the edges that the planar segment `u -> w`
 /// crosses, each only when both its new faces are oriented in the plane (so the planar mesh
 /// stays an embedding). Returns the flips made.
-fn join(mesh: &mut Shaping, u: u32, w: u32) -> usize {
+fn join(mesh: &mut Shaping, around: &mut Around, u: u32, w: u32) -> usize {
     if ![u, w].iter().all(|&v| mesh.planar(v)) {
         return 0;
     }
     let mut flips = 0;
     for _ in 0..MAX_JOIN_FLIPS {
-        let crossed = crossed_edges(mesh, u, w);
-        let Some(crossed) = crossed else { return flips };
+        let Some(crossed) = crossed_edges(mesh, around, u, w) else { return flips };
         let mut flipped = false;
         for (t1, t2, a, b) in crossed {
             // t1 = (c, a, b) runs a -> b, t2 runs b -> a with corner d.
@@ -401,9 +441,8 @@ fn join(mesh: &mut Shaping, u: u32, w: u32) -> usize {
                 continue;
             }
             let p = |v: u32| mesh.plane[v as usize];
-            if mesh.oriented(p(c), p(a), p(d), 0.0) && mesh.oriented(p(d), p(b), p(c), 0.0) && !mesh.faces.iter().any(|f| f.contains(&c) && f.contains(&d)) {
-                mesh.faces[t1] = [c, a, d];
-                mesh.faces[t2] = [d, b, c];
+            if mesh.oriented(p(c), p(a), p(d), 0.0) && mesh.oriented(p(d), p(b), p(c), 0.0) && !around.joined(mesh, c, d) {
+                around.flip(mesh, [t1, t2], [a, b, c, d]);
                 flips += 1;
                 flipped = true;
                 break;
@@ -419,17 +458,16 @@ fn join(mesh: &mut Shaping, u: u32, w: u32) -> usize {
 /// The edges `(a, b)` that the planar segment `u -> w` crosses, in order from `u`, each with
 /// its face running `a -> b` and the one running `b -> a`: `None` when `(u, w)` is an edge
 /// already or the walk does not reach `w`.
-fn crossed_edges(mesh: &Shaping, u: u32, w: u32) -> Option<Vec<(usize, usize, u32, u32)>> {
+fn crossed_edges(mesh: &Shaping, around: &Around, u: u32, w: u32) -> Option<Vec<(usize, usize, u32, u32)>> {
     let faces = &mesh.faces;
     let p = |v: u32| mesh.plane[v as usize];
     let side = |a: u32, b: u32, q: [f64; 2]| crate::mesh::geometry::signed_area_2d(p(a), p(b), q) * mesh.orientation;
     let (pu, pw) = (p(u), p(w));
-    let at_u: Vec<usize> = (0..faces.len()).filter(|&t| faces[t].contains(&u)).collect();
-    if at_u.iter().any(|&t| faces[t].contains(&w)) {
+    if around.joined(mesh, u, w) {
         return None;
     }
     // The face of u whose opposite edge (a, b) the segment leaves through.
-    let mut current = at_u.iter().find_map(|&t| {
+    let mut current = around.of(u).iter().map(|&t| t as usize).find_map(|t| {
         let f = faces[t];
         let k = f.iter().position(|&x| x == u)?;
         let (a, b) = (f[(k + 1) % 3], f[(k + 2) % 3]);
@@ -439,7 +477,7 @@ fn crossed_edges(mesh: &Shaping, u: u32, w: u32) -> Option<Vec<(usize, usize, u3
     let mut out = Vec::new();
     for _ in 0..64 {
         let (t, a, b) = current;
-        let t2 = (0..faces.len()).find(|&s| s != t && third(faces[s], b, a).is_some())?;
+        let t2 = around.running(mesh, b, a)?;
         out.push((t, t2, a, b));
         let c = third(faces[t2], b, a)?;
         if c == w {
@@ -524,13 +562,15 @@ mod tests {
         let area = |m: &Shaping| m.faces.iter().map(|f| crate::mesh::geometry::signed_area_2d(m.plane[f[0] as usize], m.plane[f[1] as usize], m.plane[f[2] as usize])).sum::<f64>();
         let before = area(&mesh);
         assert!(mesh.faces.iter().all(|f| mesh.oriented(mesh.plane[f[0] as usize], mesh.plane[f[1] as usize], mesh.plane[f[2] as usize], 0.0)));
-        let flips = join(&mut mesh, 0, 1);
+        let mut around = Around::new(&mesh);
+        let flips = join(&mut mesh, &mut around, 0, 1);
         assert!(flips >= 3, "{flips} flips");
         assert!(mesh.faces.iter().any(|f| f.contains(&0) && f.contains(&1)), "{:?}", mesh.faces);
         assert!(mesh.faces.iter().all(|f| mesh.oriented(mesh.plane[f[0] as usize], mesh.plane[f[1] as usize], mesh.plane[f[2] as usize], 0.0)), "{:?}", mesh.faces);
         assert!((area(&mesh) - before).abs() < 1e-12, "the faces still tile the same region");
         // Joined already: nothing more to flip.
-        assert_eq!(join(&mut mesh, 0, 1), 0);
+        let mut around = Around::new(&mesh);
+        assert_eq!(join(&mut mesh, &mut around, 0, 1), 0);
     }
 
     fn normal_of(mesh: &TriMesh, f: usize) -> [f64; 3] {
