@@ -359,17 +359,22 @@ fn thin_faces_are_moved_for_shape() {
     assert!(rep.quality.d_face_relative <= 0.035, "{}", rep.quality.d_face_relative);
 }
 
+/// The remesh of `name` at 5000 faces without and with `ShapeOptions::keep_creases`.
+fn without_and_with_creases(name: &str) -> ((TriMesh, capmesh::remesh::RemeshReport), (TriMesh, capmesh::remesh::RemeshReport)) {
+    let mesh = load(name);
+    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
+    let plain = remesh(&mesh, &options, &NoProgress).unwrap();
+    options.shape = options.shape.with_keep_creases(true);
+    (plain, remesh(&mesh, &options, &NoProgress).unwrap())
+}
+
 /// `ShapeOptions::keep_creases` on the lung lobe (a sharp edge, its faces' normals more than
 /// 60 degrees apart):
 /// vertices go onto the crease and are joined along it, so the sampled distance to the input
 /// falls by more than a third while the angles and areas keep their bars.
 #[test]
 fn creases_are_kept_on_the_lung_lobe() {
-    let mesh = load("closed_lung_rml_chaste.obj.gz");
-    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
-    let (_, plain) = remesh(&mesh, &options, &NoProgress).unwrap();
-    options.shape = options.shape.with_keep_creases(true);
-    let (kept, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let ((_, plain), (kept, rep)) = without_and_with_creases("closed_lung_rml_chaste.obj.gz");
     let (p, k, s) = (&plain.quality, &rep.quality, &rep.shape);
     eprintln!("plain: d_surf {:.3e}; creases: {:.3e}, {} vertices, {}/{} joined, {} freed", p.d_surface_sampled_relative, k.d_surface_sampled_relative, s.crease_vertices, s.crease_edges, s.crease_pairs, s.crease_released);
     assert_eq!(plain.shape.crease_vertices, 0, "off by default");
@@ -385,11 +390,7 @@ fn creases_are_kept_on_the_lung_lobe() {
 /// remesh is the one without it.
 #[test]
 fn a_staircase_is_not_a_crease() {
-    let mesh = load("open_hippocampus_sheet_hippunfold.obj.gz");
-    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
-    let (plain, _) = remesh(&mesh, &options, &NoProgress).unwrap();
-    options.shape = options.shape.with_keep_creases(true);
-    let (kept, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let ((plain, _), (kept, rep)) = without_and_with_creases("open_hippocampus_sheet_hippunfold.obj.gz");
     assert_eq!(rep.shape.crease_vertices, 0, "{:?}", rep.shape);
     assert_eq!(plain.faces, kept.faces);
     assert_eq!(plain.vertices, kept.vertices);

@@ -62,29 +62,20 @@ pub(crate) fn crease_chains(lift: &SurfaceLift, crease: f64, len: f64) -> Vec<Ve
     for &f in inverse.top_faces() {
         top[f] = true;
     }
-    let normal = |f: usize| {
-        let [a, b, c] = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
-        cross(sub(b, a), sub(c, a))
-    };
     let cos_crease = crease.cos();
-    let centroids = CentroidGrid::new(mesh, len);
-    let mut sides: FastMap<(u32, u32), Vec<usize>> = FastMap::default();
-    for (f, face) in mesh.faces.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (face[k], face[(k + 1) % 3]);
-            sides.entry((a.min(b), a.max(b))).or_default().push(f);
-        }
-    }
-    let mut creases: Vec<(u32, u32)> = sides
-        .iter()
-        .filter(|(_, f)| f.len() == 2 && top[f[0]] && top[f[1]])
+    let centroids = Centroids::new(mesh, len);
+    let mut creases: Vec<(u32, u32)> = super::state::edge_faces(&mesh.faces)
+        .into_iter()
+        .filter(|(_, f)| f[0] != u32::MAX && f[1] != u32::MAX)
+        .map(|(e, f)| (e, f.map(|t| t as usize)))
+        .filter(|(_, f)| top[f[0]] && top[f[1]])
         .filter(|(_, f)| {
-            let (n1, n2) = (normal(f[0]), normal(f[1]));
+            let (n1, n2) = (face_normal(mesh, f[0]), face_normal(mesh, f[1]));
             let l = norm(n1) * norm(n2);
             l > 0.0 && dot(n1, n2) < cos_crease * l
         })
-        .filter(|(&(a, b), f)| bends_at_scale(mesh, [a, b], [f[0], f[1]], &centroids, len, (SCALE_SHARE * crease).cos()))
-        .map(|(&e, _)| e)
+        .filter(|&((a, b), f)| bends_at_scale(mesh, [a, b], f, &centroids, len, (SCALE_SHARE * crease).cos()))
+        .map(|(e, _)| e)
         .collect();
     creases.sort_unstable();
     let mut adjacent: FastMap<u32, Vec<u32>> = FastMap::default();
@@ -125,50 +116,67 @@ pub(crate) fn crease_chains(lift: &SurfaceLift, crease: f64, len: f64) -> Vec<Ve
     chains
 }
 
-/// The input's faces by their centroids in cubes of side `cell`.
-struct CentroidGrid {
-    cell: f64,
-    cubes: FastMap<[i64; 3], Vec<u32>>,
-    centroid: Vec<[f64; 3]>,
+/// The normal of face `f` of `mesh`, scaled by twice its area.
+fn face_normal(mesh: &crate::mesh::TriMesh, f: usize) -> [f64; 3] {
+    let [a, b, c] = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
+    cross(sub(b, a), sub(c, a))
 }
 
-impl CentroidGrid {
+/// Numbered points in cubes of side `cell`, for the points within `cell` of a place.
+struct PointGrid {
+    cell: f64,
+    cubes: FastMap<[i64; 3], Vec<(u32, [f64; 3])>>,
+}
+
+impl PointGrid {
+    fn new(cell: f64, points: impl IntoIterator<Item = (u32, [f64; 3])>) -> Self {
+        let mut cubes: FastMap<[i64; 3], Vec<(u32, [f64; 3])>> = FastMap::default();
+        if cell > 0.0 {
+            for (i, x) in points {
+                cubes.entry(x.map(|c| (c / cell).floor() as i64)).or_default().push((i, x));
+            }
+        }
+        Self { cell, cubes }
+    }
+
+    /// The points within `radius` (at most the cell) of `x` and their distances, cube by cube.
+    fn near(&self, x: [f64; 3], radius: f64) -> impl Iterator<Item = (u32, f64)> + '_ {
+        let c = x.map(|v| (v / self.cell).floor() as i64);
+        (0..27)
+            .flat_map(move |k| {
+                let key = [c[0] + k % 3 - 1, c[1] + (k / 3) % 3 - 1, c[2] + k / 9 - 1];
+                self.cubes.get(&key).map_or(&[][..], |l| &l[..]).iter()
+            })
+            .map(move |&(i, y)| (i, norm(sub(y, x))))
+            .filter(move |&(_, d)| d <= radius)
+    }
+}
+
+/// The input's face centroids, and the faces by their centroids in cubes of side `cell`.
+struct Centroids {
+    at: Vec<[f64; 3]>,
+    grid: PointGrid,
+}
+
+impl Centroids {
     fn new(mesh: &crate::mesh::TriMesh, cell: f64) -> Self {
-        let centroid: Vec<[f64; 3]> = mesh.faces.iter().map(|f| {
+        let at: Vec<[f64; 3]> = mesh.faces.iter().map(|f| {
             let [a, b, c] = f.map(|v| mesh.vertices[v as usize]);
             [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0)
         }).collect();
-        let mut cubes: FastMap<[i64; 3], Vec<u32>> = FastMap::default();
-        if cell > 0.0 {
-            for (f, c) in centroid.iter().enumerate() {
-                cubes.entry(c.map(|x| (x / cell).floor() as i64)).or_default().push(f as u32);
-            }
-        }
-        Self { cell, cubes, centroid }
-    }
-
-    /// The faces whose centroids are within `cell` of `x`.
-    fn near(&self, x: [f64; 3]) -> impl Iterator<Item = u32> + '_ {
-        let c = x.map(|v| (v / self.cell).floor() as i64);
-        (0..27).flat_map(move |k| {
-            let key = [c[0] + k % 3 - 1, c[1] + (k / 3) % 3 - 1, c[2] + k / 9 - 1];
-            self.cubes.get(&key).map_or(&[][..], |l| &l[..]).iter().copied()
-        })
-        .filter(move |&f| norm(sub(self.centroid[f as usize], x)) <= self.cell)
+        let grid = PointGrid::new(cell, at.iter().enumerate().map(|(f, &x)| (f as u32, x)));
+        Self { at, grid }
     }
 }
 
 /// Whether the input edge `[a, b]` with faces `[f1, f2]` bends at the scale `len`: the
 /// area-weighted mean normals of the faces within `len` of its midpoint, on `f1`'s side and on
 /// `f2`'s side of the plane through the edge that bisects it, have a cosine below `cos_bound`.
-fn bends_at_scale(mesh: &crate::mesh::TriMesh, [a, b]: [u32; 2], [f1, f2]: [usize; 2], grid: &CentroidGrid, len: f64, cos_bound: f64) -> bool {
+fn bends_at_scale(mesh: &crate::mesh::TriMesh, [a, b]: [u32; 2], [f1, f2]: [usize; 2], centroids: &Centroids, len: f64, cos_bound: f64) -> bool {
     if !(len > 0.0) {
         return true;
     }
-    let normal = |f: usize| {
-        let [p, q, r] = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
-        cross(sub(q, p), sub(r, p))
-    };
+    let normal = |f: usize| face_normal(mesh, f);
     let unit = |v: [f64; 3]| {
         let l = norm(v);
         v.map(|c| c / l)
@@ -177,11 +185,11 @@ fn bends_at_scale(mesh: &crate::mesh::TriMesh, [a, b]: [u32; 2], [f1, f2]: [usiz
     let (xa, xb) = (mesh.vertices[a as usize], mesh.vertices[b as usize]);
     let mid = [0, 1, 2].map(|k| 0.5 * (xa[k] + xb[k]));
     let split = sub(n1, n2);
-    let side_of_f1 = dot(sub(grid.centroid[f1], mid), split).signum();
+    let side_of_f1 = dot(sub(centroids.at[f1], mid), split).signum();
     let (mut s1, mut s2) = ([0.0; 3], [0.0; 3]);
-    for f in grid.near(mid) {
+    for (f, _) in centroids.grid.near(mid, len) {
         let n = normal(f as usize);
-        let s = if dot(sub(grid.centroid[f as usize], mid), split).signum() == side_of_f1 { &mut s1 } else { &mut s2 };
+        let s = if dot(sub(centroids.at[f as usize], mid), split).signum() == side_of_f1 { &mut s1 } else { &mut s2 };
         for k in 0..3 {
             s[k] += n[k];
         }
@@ -243,17 +251,21 @@ impl CreaseSnap {
         Self { runs, len }
     }
 
+    /// The vertices of each pair of consecutive crease points (around a closed loop too).
+    fn pairs(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.runs.iter().flat_map(|(points, closed)| {
+            let m = points.len();
+            (0..if *closed { m } else { m.saturating_sub(1) }).map(move |k| (points[k].1, points[(k + 1) % m].1))
+        })
+    }
+
     /// Consecutive crease points joined by an edge of `mesh`, and all such pairs.
     pub(crate) fn joined(&self, mesh: &Shaping) -> (usize, usize) {
-        let edges = super::state::edge_faces(&mesh.faces);
+        let around = Around::new(mesh);
         let (mut joined, mut pairs) = (0, 0);
-        for (points, closed) in &self.runs {
-            let m = points.len();
-            for k in 0..if *closed { m } else { m.saturating_sub(1) } {
-                let (u, w) = (points[k].1, points[(k + 1) % m].1);
-                pairs += 1;
-                joined += usize::from(edges.contains_key(&(u.min(w), u.max(w))));
-            }
+        for (u, w) in self.pairs() {
+            pairs += 1;
+            joined += usize::from(u < SKIPPED && w < SKIPPED && around.joined(mesh, u, w));
         }
         (joined, pairs)
     }
@@ -271,15 +283,10 @@ impl CreaseSnap {
         if self.runs.is_empty() {
             return 0;
         }
-        let cell = |x: [f64; 3]| x.map(|c| (c / len).floor() as i64);
         let incidence: Incidence = mesh.incidence();
-        let mut grid: FastMap<[i64; 3], Vec<u32>> = FastMap::default();
         // Free vertices with faces (a collapsed vertex has none).
-        for v in 0..mesh.plane.len() {
-            if mesh.role[v] == Role::Free && mesh.planar(v as u32) && !incidence.of(v).is_empty() {
-                grid.entry(cell(mesh.position[v])).or_default().push(v as u32);
-            }
-        }
+        let free = (0..mesh.plane.len()).filter(|&v| mesh.role[v] == Role::Free && mesh.planar(v as u32) && !incidence.of(v).is_empty());
+        let grid = PointGrid::new(len, free.map(|v| (v as u32, mesh.position[v])));
         // The points that have a vertex, and it (judged by the point: the vertex may still
         // be on its way).
         let mut placed: Vec<([f64; 3], u32)> = self.runs.iter().flat_map(|(points, _)| points).filter(|(_, v)| *v < SKIPPED).map(|((_, x), v)| (*x, *v)).collect();
@@ -303,23 +310,10 @@ impl CreaseSnap {
                     }
                     _ => {}
                 }
-                let c = cell(*x);
-                let mut near: Vec<(f64, u32)> = Vec::new();
-                for dx in -1..=1 {
-                    for dy in -1..=1 {
-                        for dz in -1..=1 {
-                            for &v in grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]).map_or(&[][..], |l| &l[..]) {
-                                let d = norm(sub(mesh.position[v as usize], *x));
-                                if d <= REACH * len && mesh.role[v as usize] == Role::Free {
-                                    near.push((d, v));
-                                }
-                            }
-                        }
-                    }
-                }
-                // The nearest free vertex is taken; it travels onto the point over the
+                // The nearest vertex still free is taken; it travels onto the point over the
                 // iterations (see below).
-                if let Some(&(_, v)) = near.iter().min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))) {
+                let nearest = grid.near(*x, REACH * len).filter(|&(v, _)| mesh.role[v as usize] == Role::Free).min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+                if let Some((v, _)) = nearest {
                     mesh.role[v as usize] = Role::Crease;
                     placed.push((*x, v));
                     *at = v;
@@ -355,14 +349,9 @@ impl CreaseSnap {
         }
         let mut flips = 0;
         let mut around = Around::new(mesh);
-        for (points, closed) in &self.runs {
-            let m = points.len();
-            let pairs = if *closed { m } else { m.saturating_sub(1) };
-            for k in 0..pairs {
-                let (u, w) = (points[k].1, points[(k + 1) % m].1);
-                if u < SKIPPED && w < SKIPPED && u != w && !around.joined(mesh, u, w) {
-                    flips += join(mesh, &mut around, u, w);
-                }
+        for (u, w) in self.pairs() {
+            if u < SKIPPED && w < SKIPPED && u != w && !around.joined(mesh, u, w) {
+                flips += join(mesh, &mut around, u, w);
             }
         }
         flips
@@ -525,17 +514,17 @@ mod tests {
         let roof: Vec<[f64; 2]> = (-10..=10).map(|k| [k as f64 * 0.1, -(k as f64).abs() * 0.1]).collect();
         let mesh = strip(&roof, 40);
         let ridge = (20 * roof.len() + 10) as u32;
-        let grid = CentroidGrid::new(&mesh, 1.0);
-        assert!(bends_at_scale(&mesh, [ridge, ridge + roof.len() as u32], sides(&mesh, ridge, ridge + roof.len() as u32), &grid, 1.0, cos_bound));
+        let centroids = Centroids::new(&mesh, 1.0);
+        assert!(bends_at_scale(&mesh, [ridge, ridge + roof.len() as u32], sides(&mesh, ridge, ridge + roof.len() as u32), &centroids, 1.0, cos_bound));
         // Steps: up 0.1, across 0.1, up 0.1, ...
         let stairs: Vec<[f64; 2]> = (0..=20).map(|k| [((k + 1) / 2) as f64 * 0.1, (k / 2) as f64 * 0.1]).collect();
         let mesh = strip(&stairs, 40);
         let step = (20 * stairs.len() + 10) as u32;
         let [f1, f2] = sides(&mesh, step, step + stairs.len() as u32);
-        let (n1, n2) = (normal_of(&mesh, f1), normal_of(&mesh, f2));
+        let (n1, n2) = (face_normal(&mesh, f1), face_normal(&mesh, f2));
         assert!(dot(n1, n2).abs() < 1e-9 * norm(n1) * norm(n2), "the step itself bends by 90 degrees");
-        let grid = CentroidGrid::new(&mesh, 1.0);
-        assert!(!bends_at_scale(&mesh, [step, step + stairs.len() as u32], [f1, f2], &grid, 1.0, cos_bound));
+        let centroids = Centroids::new(&mesh, 1.0);
+        assert!(!bends_at_scale(&mesh, [step, step + stairs.len() as u32], [f1, f2], &centroids, 1.0, cos_bound));
     }
 
     /// A fan of thin triangles between u = (0, 0) and w = (3, 0): the segment u -> w crosses
@@ -571,10 +560,5 @@ mod tests {
         // Joined already: nothing more to flip.
         let mut around = Around::new(&mesh);
         assert_eq!(join(&mut mesh, &mut around, 0, 1), 0);
-    }
-
-    fn normal_of(mesh: &TriMesh, f: usize) -> [f64; 3] {
-        let [a, b, c] = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
-        cross(sub(b, a), sub(c, a))
     }
 }
