@@ -309,6 +309,9 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
         let orientation = shape::state::planar_orientation(&faces, &planar, &has_plane, &role);
         let mut state = shape::state::Shaping { faces, plane: planar, position: positions, hint: vec![u32::MAX; has_plane.len()], role, has_plane: has_plane.clone(), orientation };
         uncross_report = shape::uncross::uncross(&mut state, &lift, options.shape.crease_deg.to_radians());
+        if uncross_report.moves + uncross_report.flips + uncross_report.collapses > 0 {
+            shape_report.angle_moves += shape::worst::raise_by_search(&mut state, &lift);
+        }
         if uncross_report.collapses > 0 {
             // Collapsed vertices have no face left: drop them, renumbering the rest.
             shape::resample::compact(&mut state, &mut vec![0.0; has_plane.len()]);

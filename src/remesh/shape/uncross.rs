@@ -62,7 +62,7 @@ pub struct UncrossReport {
 }
 
 /// The faces within [`RINGS`] rings of vertex `v`, sorted.
-fn faces_around(mesh: &Shaping, incidence: &Incidence, v: usize) -> Vec<u32> {
+pub(crate) fn faces_around(mesh: &Shaping, incidence: &Incidence, v: usize) -> Vec<u32> {
     let mut verts = vec![v as u32];
     let mut faces: Vec<u32> = Vec::new();
     let mut frontier = vec![v as u32];
@@ -87,7 +87,7 @@ fn faces_around(mesh: &Shaping, incidence: &Incidence, v: usize) -> Vec<u32> {
 }
 
 /// Crossing pairs between the faces `ring` (at `v`, with `v` at `x`) and the faces `near`.
-fn local_crossings(mesh: &Shaping, ring: &[u32], near: &[u32], v: usize, x: [f64; 3]) -> usize {
+pub(crate) fn local_crossings(mesh: &Shaping, ring: &[u32], near: &[u32], v: usize, x: [f64; 3]) -> usize {
     let at = |u: u32| if u as usize == v { x } else { mesh.position[u as usize] };
     let mut count = 0;
     for &r in ring {
