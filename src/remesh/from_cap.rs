@@ -91,9 +91,14 @@ pub(crate) fn rank(r: &FromCap) -> (usize, usize, f64) {
 /// marching-cubes hippocampus at 10000 faces (quad 1.3 faces) had a smallest angle of 5.3
 /// degrees, 15.4 merged; the bundled closed meshes at 10000 faces: 12k brain 13.0 -> 15.4,
 /// hippocampus 15.0 -> 19.8, lung lobe 17.7 -> 21.1 (d_face_rel lower on the three), bird skull
-/// 15.3 -> 15.0 (its mean smallest angle 48.03 -> 48.16). A limit of three faces lowered the
-/// 12k brain at 20000 faces from 14.2 to 9.9 degrees.
-pub(crate) const MERGE_QUAD_FACES: f64 = 2.0;
+/// 15.3 -> 15.0 (its mean smallest angle 48.03 -> 48.16). Raised from two faces to four once
+/// the thinnest faces were raised by a compass search (`shape::worst`): a quad of 2-4 faces
+/// kept as a rim ring and a disk holds about 19 faces a sixth of the mean area (the bunny at
+/// 5000 faces, quad 3.5 faces: 0.003 of its d_face_rel 0.032); merged, d_face_rel fell on all
+/// eight remeshes that changed (5000-20000 faces; 12k brain at 20000 0.0211 -> 0.0172, bunny
+/// at 5000 0.0323 -> 0.0288) and the smallest angle rose on six (12k brain at 20000 10.1 ->
+/// 25.2) and fell on two (bunny at 5000 22.4 -> 20.3, bird skull at 10000 18.5 -> 15.6).
+pub(crate) const MERGE_QUAD_FACES: f64 = 4.0;
 
 /// The d_face_rel above which a closed surface's uniform remesh also tries the other puncture
 /// end ([`super::remesh`]): the bar of issue 26 is 0.035 on most meshes. The two ends' maps
