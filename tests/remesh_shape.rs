@@ -169,13 +169,19 @@ fn closed_lung_lobe() {
 /// degrees, d_face_rel 0.0211; merged 25.2 and 0.0172).
 #[test]
 fn closed_brain12k_at_20000_faces_merges_its_bottom() {
-    let mesh = load("closed_brain12k_choi.obj.gz");
-    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 20000 });
+    merged_bottom_at("closed_brain12k_choi.obj.gz", 20000, 20.0, 0.019);
+}
+
+/// The remesh of `name` at `faces` faces (a closed surface whose bottom is merged): its
+/// smallest angle at least `min_angle` degrees and d_face_rel at most `max_d_face`.
+fn merged_bottom_at(name: &str, faces: usize, min_angle: f64, max_d_face: f64) {
+    let mesh = load(name);
+    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces });
     let (out, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
     let a = angle_quality(&out);
-    eprintln!("12k brain at 20000: smallest angle {:.1}, mean {:.2}, d_face_rel {:.4}", a.min_angle_deg, a.mean_min_angle_deg, rep.quality.d_face_relative);
-    assert!(a.min_angle_deg >= 20.0, "smallest angle {:.1}", a.min_angle_deg);
-    assert!(rep.quality.d_face_relative <= 0.019, "d_face_rel {:.4}", rep.quality.d_face_relative);
+    eprintln!("{name} at {faces}: smallest angle {:.1}, mean {:.2}, d_face_rel {:.4}", a.min_angle_deg, a.mean_min_angle_deg, rep.quality.d_face_relative);
+    assert!(a.min_angle_deg >= min_angle, "smallest angle {:.1}", a.min_angle_deg);
+    assert!(rep.quality.d_face_relative <= max_d_face, "d_face_rel {:.4}", rep.quality.d_face_relative);
     assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
 }
 
@@ -237,14 +243,7 @@ fn closed_bunny_subdivided_twice_retries_the_other_end_for_its_areas() {
 /// left as a ring bunched on the quad they gave a 15.0-degree sliver (19.8 merged).
 #[test]
 fn closed_hippocampus_at_10000_faces_merges_its_bottom() {
-    let mesh = load("closed_hippocampus_choi.obj.gz");
-    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 10000 });
-    let (out, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
-    let a = angle_quality(&out);
-    eprintln!("hippocampus at 10000: smallest angle {:.1}, mean {:.2}, d_face_rel {:.4}", a.min_angle_deg, a.mean_min_angle_deg, rep.quality.d_face_relative);
-    assert!(a.min_angle_deg >= 17.0, "smallest angle {:.1}", a.min_angle_deg);
-    assert!(rep.quality.d_face_relative <= 0.035, "d_face_rel {:.4}", rep.quality.d_face_relative);
-    assert_eq!(validate(&out).unwrap().0, SurfaceKind::ClosedSphere);
+    merged_bottom_at("closed_hippocampus_choi.obj.gz", 10000, 17.0, 0.035);
 }
 
 #[test]
