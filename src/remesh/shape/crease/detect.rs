@@ -81,6 +81,7 @@ fn face_normal(mesh: &crate::mesh::TriMesh, f: usize) -> [f64; 3] {
     let [a, b, c] = mesh.faces[f].map(|v| mesh.vertices[v as usize]);
     cross(sub(b, a), sub(c, a))
 }
+
 /// The input's face centroids, and the faces by their centroids in cubes of side `cell`.
 struct Centroids {
     at: Vec<[f64; 3]>,

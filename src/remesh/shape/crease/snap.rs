@@ -35,6 +35,7 @@ const HALVINGS: usize = 5;
 
 /// A point along a crease: planar and surface position.
 type CreasePoint = ([f64; 2], [f64; 3]);
+
 /// Points along `chain` spaced by about `len` (both ends included), planar and on the
 /// surface; none for a chain shorter than [`MIN_CHAIN_EDGES`] edge lengths.
 fn chain_points(lift: &SurfaceLift, chain: &[u32], len: f64) -> Vec<CreasePoint> {
