@@ -152,6 +152,16 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
             rep.quality.zero_area_faces
         );
     }
+    if rep.quality.self_intersecting_faces > rep.quality.self_intersecting_faces_input {
+        eprintln!(
+            "warning: {}: {} faces of the remesh cross another face (the input has {}): the surface is thinner or bends more \
+             sharply than the remesh's edges there (between fingers, at a deep fold); try another --faces, and find them \
+             with MeshLab's 'Select Self Intersecting Faces'",
+            input.display(),
+            rep.quality.self_intersecting_faces,
+            rep.quality.self_intersecting_faces_input
+        );
+    }
     print_quality(&rep.quality)?;
     if let Some(path) = report {
         let q = &rep.quality;
