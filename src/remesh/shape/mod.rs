@@ -168,8 +168,9 @@ pub struct ShapeReport {
     pub splits: usize,
     /// Edge collapses over all iterations.
     pub collapses: usize,
-    /// Vertices removed at slivers after the last flips (`sliver`): free ones of valence 3 or
-    /// 4, and a closed surface's rim vertices merged along short rim edges.
+    /// Vertices removed at slivers after the last flips and again after the moves for shape
+    /// (`sliver`): free ones of valence 3 or 4, and a closed surface's rim vertices merged
+    /// along short rim edges.
     pub sliver_removals: usize,
     /// Vertex moves (interior relaxation and boundary slides) over all iterations.
     pub moves: usize,
@@ -422,6 +423,13 @@ pub(crate) fn optimize_shape(
         let (moves, flips) = worst::raise_smallest_angles(&mut mesh, input.lift, &|t| targets[t], crease);
         report.angle_moves = moves;
         report.flips += flips;
+        // The moves and flips for shape can leave a vertex of valence 3 or 4 at a sliver
+        // (next to a closed surface's bottom fan): removed as above.
+        let late = sliver::remove_sliver_vertices(&mut mesh);
+        if late > 0 {
+            report.sliver_removals += late;
+            report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
+        }
     }
     if let Some(c) = &creases {
         report.crease_vertices = c.placed(&mesh);
