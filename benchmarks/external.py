@@ -1,15 +1,18 @@
-"""Remesh quality on cortical surfaces that are not in the repository (issue 26: "the same figures hold
+"""Remesh quality on anatomical meshes that are not in the repository (issue 26: "the same figures hold
 on anatomical meshes that are not in the repository").
 
-FreeSurfer's fsaverage5 surfaces (10242 vertices per hemisphere, closed genus 0) ship inside
-nilearn's wheel on PyPI (nilearn/datasets/data/fsaverage5/*.gii.gz). The wheel is downloaded
-(`pip download nilearn==NILEARN --no-deps`, not installed, not committed), the GIFTI surfaces are
-taken from it: pial (the folded outer surface, sulci closed to a few voxels), white (the
-grey/white boundary) and inflated, both hemispheres. Then `capmesh remesh --faces N` runs on
-each (N = 5000 and 20000 by default) with the default options, and the table gives the figures
-of the issue's bars (the same as benchmarks/variants.py), each marked where it misses.
+- FreeSurfer's fsaverage5 surfaces (10242 vertices per hemisphere, closed genus 0) ship inside
+  nilearn's wheel on PyPI (nilearn/datasets/data/fsaverage5/*.gii.gz). The wheel is downloaded
+  (`pip download nilearn==NILEARN --no-deps`, not installed, not committed), the GIFTI surfaces
+  are taken from it: pial (the folded outer surface, sulci closed to a few voxels), white (the
+  grey/white boundary) and inflated, both hemispheres.
+- pymeshlab's sample bone (`pymeshlab/tests/sample_meshes/bone.ply` in the benchmark's venv: a
+  long bone, 3022 faces, closed genus 0).
+Then `capmesh remesh --faces N` runs on each (N = 5000 and 20000 by default) with the default
+options, and the table gives the figures of the issue's bars (the same as benchmarks/variants.py),
+each marked where it misses.
 
-    bash benchmarks/cortex.sh            # writes benchmarks/results/cortex.{md,json}
+    bash benchmarks/external.sh            # writes benchmarks/results/external.{md,json}
 """
 
 import argparse
@@ -23,6 +26,8 @@ import tempfile
 import time
 import zipfile
 
+import pymeshlab
+
 from variants import CAPMESH, RESULTS, misses
 
 NILEARN = "0.14.1"
@@ -30,7 +35,8 @@ SURFACES = ["pial_left", "pial_right", "white_left", "white_right", "infl_left",
 
 
 def surfaces(work):
-    """The fsaverage5 GIFTI surfaces of nilearn's wheel, unpacked into `work`: name -> path."""
+    """The fsaverage5 GIFTI surfaces of nilearn's wheel, unpacked into `work`, and pymeshlab's
+    sample bone: name -> path."""
     wheels = os.path.join(work, "wheel")
     subprocess.run([sys.executable, "-m", "pip", "download", "-q", "--no-deps", "--disable-pip-version-check", "-d", wheels, f"nilearn=={NILEARN}"], check=True)
     wheel = next(os.path.join(wheels, w) for w in os.listdir(wheels) if w.endswith(".whl"))
@@ -41,6 +47,7 @@ def surfaces(work):
             with open(path, "wb") as out:
                 out.write(gzip.decompress(z.read(f"nilearn/datasets/data/fsaverage5/{name}.gii.gz")))
             paths[name] = path
+    paths["pymeshlab_bone"] = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshes", "bone.ply")
     return paths
 
 
@@ -78,15 +85,16 @@ def main():
 
 def write(rows, args):
     os.makedirs(RESULTS, exist_ok=True)
-    with open(os.path.join(RESULTS, "cortex.json"), "w") as f:
+    with open(os.path.join(RESULTS, "external.json"), "w") as f:
         json.dump(rows, f, indent=1)
     ok = [r for r in rows if "error" not in r]
     lines = [
-        "# Remesh quality on cortical surfaces that are not in the repository (fsaverage5)",
+        "# Remesh quality on anatomical meshes that are not in the repository",
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores; {platform.platform()}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}.",
-        f"One run of `bash benchmarks/cortex.sh`: FreeSurfer's fsaverage5 surfaces from nilearn {NILEARN}'s wheel on PyPI",
-        "(downloaded at run time, not committed), both hemispheres, then",
+        f"One run of `bash benchmarks/external.sh`: FreeSurfer's fsaverage5 surfaces from nilearn {NILEARN}'s wheel on PyPI",
+        "(downloaded at run time, not committed), both hemispheres, and pymeshlab's sample bone (`tests/sample_meshes/bone.ply`",
+        "of pymeshlab 2025.7.post1), then",
         f"`capmesh remesh SURFACE --faces N` (N = {args.faces.replace(',', ', ')}) with the default options, timed around the",
         "whole command. Bars of issue 26 (set for 5000 faces): d_face_rel <= 0.035, mean smallest angle >= 48,",
         "<= 2% of faces below 30 degrees, smallest angle >= 15, no more self-intersecting faces than the input;",
@@ -106,7 +114,7 @@ def write(rows, args):
             f"{100 * r['share_faces_angle_below_30']:.2f} | {r['min_angle_deg']:.1f} | {r['self_intersecting_faces']} ({r['self_intersecting_faces_input']}) | "
             f"{r['d_surface_sampled_relative']:.2e} | {r['mean_abs_area_distortion']:.4f} | {r['seconds']:.2f} | {', '.join(r['misses']) or '-'} |"
         )
-    with open(os.path.join(RESULTS, "cortex.md"), "w") as f:
+    with open(os.path.join(RESULTS, "external.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
 
