@@ -17,7 +17,6 @@ each marked where it misses.
 
 import argparse
 import gzip
-import json
 import os
 import platform
 import subprocess
@@ -28,7 +27,7 @@ import zipfile
 
 import pymeshlab
 
-from variants import CAPMESH, RESULTS, misses
+from variants import bar_cells, bar_counts, remesh_row, write_report
 
 NILEARN = "0.14.1"
 SURFACES = ["pial_left", "pial_right", "white_left", "white_right", "infl_left", "infl_right"]
@@ -59,36 +58,16 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         for name, path in surfaces(work).items():
             for faces in args.faces.split(","):
-                out = os.path.join(work, f"{name}_{faces}.obj")
-                report = out + ".json"
-                t = time.perf_counter()
-                run = subprocess.run([CAPMESH, "remesh", path, "-o", out, "--faces", faces, "--report", report, "--quiet"], capture_output=True, text=True)
-                seconds = time.perf_counter() - t
-                if run.returncode != 0:
-                    rows.append({"mesh": name, "target": int(faces), "error": run.stderr.strip().replace(work + os.sep, "")[-300:], "exit": run.returncode})
-                    print(f"{name} {faces}: exit {run.returncode}", file=sys.stderr)
-                    continue
-                r = json.load(open(report))
-                row = {
-                    "mesh": name, "target": int(faces), "input_faces": r["parameterization"]["n_faces"], "faces": r["faces"],
-                    "d_face_relative": r["d_face_relative"], "mean_min_angle_deg": r["mean_min_angle_deg"],
-                    "share_faces_angle_below_30": r["share_faces_angle_below_30"], "min_angle_deg": r["min_angle_deg"],
-                    "self_intersecting_faces": r["self_intersecting_faces"], "self_intersecting_faces_input": r["self_intersecting_faces_input"],
-                    "d_surface_sampled_relative": r["d_surface_sampled_relative"],
-                    "mean_abs_area_distortion": r["parameterization"]["area_distortion"]["mean_abs"], "seconds": seconds,
-                }
-                row["misses"] = misses(name, r)
+                row, r = remesh_row(name, path, os.path.join(work, f"{name}_{faces}.obj"), faces, work, {})
+                if r is not None:
+                    row["input_faces"] = r["parameterization"]["n_faces"]
+                    row["d_surface_sampled_relative"] = r["d_surface_sampled_relative"]
                 rows.append(row)
-                print(f"{name} {faces}: {row['faces']} faces, mean {row['mean_min_angle_deg']:.2f}, min {row['min_angle_deg']:.1f} {' '.join(row['misses'])}", file=sys.stderr)
     write(rows, args)
 
 
 def write(rows, args):
-    os.makedirs(RESULTS, exist_ok=True)
-    with open(os.path.join(RESULTS, "external.json"), "w") as f:
-        json.dump(rows, f, indent=1)
-    ok = [r for r in rows if "error" not in r]
-    lines = [
+    head = [
         "# Remesh quality on anatomical meshes that are not in the repository",
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores; {platform.platform()}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}.",
@@ -100,22 +79,19 @@ def write(rows, args):
         "<= 2% of faces below 30 degrees, smallest angle >= 15, no more self-intersecting faces than the input;",
         "`misses` names the bars a row misses. d_surf: symmetric face-sampled mean distance over the bounding-box diagonal.",
         "",
-        *[f"Rows meeting every bar at {n} faces: {sum(1 for r in ok if r['target'] == int(n) and not r['misses'])} of {sum(1 for r in rows if r['target'] == int(n))}." for n in args.faces.split(",")],
+        *bar_counts(rows, args.faces),
         "",
         "| surface | input faces | target | faces | d_face_rel | mean min angle | % < 30 deg | min angle | self-x faces (input) | d_surf | mean \\|d_area\\| | seconds | misses |",
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
     ]
-    for r in rows:
-        if "error" in r:
-            lines.append(f"| {r['mesh']} | | {r['target']} | | | | | | | | | | exit {r['exit']}: {r['error']} |")
-            continue
-        lines.append(
-            f"| {r['mesh']} | {r['input_faces']} | {r['target']} | {r['faces']} | {r['d_face_relative']:.4f} | {r['mean_min_angle_deg']:.2f} | "
-            f"{100 * r['share_faces_angle_below_30']:.2f} | {r['min_angle_deg']:.1f} | {r['self_intersecting_faces']} ({r['self_intersecting_faces_input']}) | "
-            f"{r['d_surface_sampled_relative']:.2e} | {r['mean_abs_area_distortion']:.4f} | {r['seconds']:.2f} | {', '.join(r['misses']) or '-'} |"
-        )
-    with open(os.path.join(RESULTS, "external.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+    write_report(
+        "external",
+        rows,
+        head,
+        lambda r: f"| {r['mesh']} | {r['input_faces']} | {r['target']} | {bar_cells(r)} | "
+        f"{r['d_surface_sampled_relative']:.2e} | {r['mean_abs_area_distortion']:.4f} | {r['seconds']:.2f} | {', '.join(r['misses']) or '-'} |",
+        lambda r: f"| {r['mesh']} | | {r['target']} | | | | | | | | | | exit {r['exit']}: {r['error']} |",
+    )
 
 
 if __name__ == "__main__":

@@ -135,6 +135,44 @@ def misses(name, r):
     return bad
 
 
+def remesh_row(name, path, out, faces, work, keys):
+    """Run `capmesh remesh path --faces faces` into `out`: the row of the issue's figures (with
+    `keys` first, and the bars `misses`) and the JSON report, or an error row and `None`."""
+    report = out + ".json"
+    t = time.perf_counter()
+    run = subprocess.run([CAPMESH, "remesh", path, "-o", out, "--faces", faces, "--report", report, "--quiet"], capture_output=True, text=True)
+    seconds = time.perf_counter() - t
+    label = " ".join([name, *map(str, keys.values()), faces])
+    if run.returncode != 0:
+        print(f"{label}: exit {run.returncode}", file=sys.stderr)
+        return {"mesh": name, **keys, "target": int(faces), "error": run.stderr.strip().replace(work + os.sep, "")[-300:], "exit": run.returncode}, None
+    r = json.load(open(report))
+    row = {
+        "mesh": name, **keys, "target": int(faces), "faces": r["faces"],
+        "d_face_relative": r["d_face_relative"], "mean_min_angle_deg": r["mean_min_angle_deg"],
+        "share_faces_angle_below_30": r["share_faces_angle_below_30"], "min_angle_deg": r["min_angle_deg"],
+        "self_intersecting_faces": r["self_intersecting_faces"], "self_intersecting_faces_input": r["self_intersecting_faces_input"],
+        "mean_abs_area_distortion": r["parameterization"]["area_distortion"]["mean_abs"], "seconds": seconds,
+        "misses": misses(name, r),
+    }
+    print(f"{label}: {row['faces']} faces, mean {row['mean_min_angle_deg']:.2f}, min {row['min_angle_deg']:.1f} {' '.join(row['misses'])}", file=sys.stderr)
+    return row, r
+
+
+def bar_counts(rows, faces):
+    """The lines counting the rows that meet every bar, one per target face count of `faces`."""
+    ok = [r for r in rows if "error" not in r]
+    return [f"Rows meeting every bar at {n} faces: {sum(1 for r in ok if r['target'] == int(n) and not r['misses'])} of {sum(1 for r in rows if r['target'] == int(n))}." for n in faces.split(",")]
+
+
+def bar_cells(r):
+    """A row's table cells from the face count to the self-intersecting faces."""
+    return (
+        f"{r['faces']} | {r['d_face_relative']:.4f} | {r['mean_min_angle_deg']:.2f} | {100 * r['share_faces_angle_below_30']:.2f} | "
+        f"{r['min_angle_deg']:.1f} | {r['self_intersecting_faces']} ({r['self_intersecting_faces_input']})"
+    )
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--faces", default="5000,10000", help="comma-separated target face counts (the issue's bars are for 5000)")
@@ -145,35 +183,16 @@ def main():
         for name in args.meshes.split(","):
             for (variant, (path, input_faces)), faces in [(vp, f) for vp in variants(name, work).items() for f in args.faces.split(",")]:
                 out = os.path.join(work, f"{name}_{variant}_{faces}_remesh.obj")
-                report = out + ".json"
-                t = time.perf_counter()
-                run = subprocess.run([CAPMESH, "remesh", path, "-o", out, "--faces", faces, "--report", report, "--quiet"], capture_output=True, text=True)
-                seconds = time.perf_counter() - t
-                if run.returncode != 0:
-                    rows.append({"mesh": name, "variant": variant, "target": int(faces), "error": run.stderr.strip().replace(work + os.sep, "")[-300:], "exit": run.returncode})
-                    print(f"{name} {variant} {faces}: exit {run.returncode}", file=sys.stderr)
-                    continue
-                r = json.load(open(report))
-                row = {
-                    "mesh": name, "variant": variant, "target": int(faces), "input_faces": input_faces, "faces": r["faces"],
-                    "d_face_relative": r["d_face_relative"], "mean_min_angle_deg": r["mean_min_angle_deg"],
-                    "share_faces_angle_below_30": r["share_faces_angle_below_30"], "min_angle_deg": r["min_angle_deg"],
-                    "self_intersecting_faces": r["self_intersecting_faces"], "self_intersecting_faces_input": r["self_intersecting_faces_input"],
-                    "mean_abs_area_distortion": r["parameterization"]["area_distortion"]["mean_abs"], "seconds": seconds,
-                    "sliver_removals": r["shape"].get("sliver_removals", 0),
-                }
-                row["misses"] = misses(name, r)
+                row, r = remesh_row(name, path, out, faces, work, {"variant": variant})
+                if r is not None:
+                    row["input_faces"] = input_faces
+                    row["sliver_removals"] = r["shape"].get("sliver_removals", 0)
                 rows.append(row)
-                print(f"{name} {variant} {faces}: {row['faces']} faces, mean {row['mean_min_angle_deg']:.2f}, min {row['min_angle_deg']:.1f} {' '.join(row['misses'])}", file=sys.stderr)
     write(rows, args)
 
 
 def write(rows, args):
-    os.makedirs(RESULTS, exist_ok=True)
-    with open(os.path.join(RESULTS, "variants.json"), "w") as f:
-        json.dump(rows, f, indent=1)
-    ok = [r for r in rows if "error" not in r]
-    lines = [
+    head = [
         "# Remesh quality on re-triangulated and subdivided copies of the bundled meshes",
         "",
         f"Machine: {platform.machine()}, {os.cpu_count()} cores; {platform.platform()}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}.",
@@ -188,21 +207,29 @@ def write(rows, args):
         "angle >= 15, no more self-intersecting faces than the copy; `misses` names the bars a row misses.",
         "`removed` counts the vertices of valence 3 or 4 removed at slivers after the last flips.",
         "",
-        *[f"Rows meeting every bar at {n} faces: {sum(1 for r in ok if r['target'] == int(n) and not r['misses'])} of {sum(1 for r in rows if r['target'] == int(n))}." for n in args.faces.split(",")],
+        *bar_counts(rows, args.faces),
         "",
         "| mesh | copy | input faces | target | faces | d_face_rel | mean min angle | % < 30 deg | min angle | self-x faces (copy) | mean \\|d_area\\| | removed | seconds | misses |",
         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
     ]
-    for r in rows:
-        if "error" in r:
-            lines.append(f"| {r['mesh']} | {r['variant']} | | {r['target']} | | | | | | | | | | exit {r['exit']}: {r['error']} |")
-            continue
-        lines.append(
-            f"| {r['mesh']} | {r['variant']} | {r['input_faces']} | {r['target']} | {r['faces']} | {r['d_face_relative']:.4f} | {r['mean_min_angle_deg']:.2f} | "
-            f"{100 * r['share_faces_angle_below_30']:.2f} | {r['min_angle_deg']:.1f} | {r['self_intersecting_faces']} ({r['self_intersecting_faces_input']}) | "
-            f"{r['mean_abs_area_distortion']:.4f} | {r['sliver_removals']} | {r['seconds']:.2f} | {', '.join(r['misses']) or '-'} |"
-        )
-    with open(os.path.join(RESULTS, "variants.md"), "w") as f:
+    write_report(
+        "variants",
+        rows,
+        head,
+        lambda r: f"| {r['mesh']} | {r['variant']} | {r['input_faces']} | {r['target']} | {bar_cells(r)} | "
+        f"{r['mean_abs_area_distortion']:.4f} | {r['sliver_removals']} | {r['seconds']:.2f} | {', '.join(r['misses']) or '-'} |",
+        lambda r: f"| {r['mesh']} | {r['variant']} | | {r['target']} | | | | | | | | | | exit {r['exit']}: {r['error']} |",
+    )
+
+
+def write_report(name, rows, head, cells, error_cells):
+    """Write `RESULTS/name.json` (the rows) and `RESULTS/name.md`: the `head` lines, then a table
+    line per row, `cells(r)` for a remesh and `error_cells(r)` for a failed one."""
+    os.makedirs(RESULTS, exist_ok=True)
+    with open(os.path.join(RESULTS, f"{name}.json"), "w") as f:
+        json.dump(rows, f, indent=1)
+    lines = [*head, *(error_cells(r) if "error" in r else cells(r) for r in rows)]
+    with open(os.path.join(RESULTS, f"{name}.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
 
