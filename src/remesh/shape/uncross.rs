@@ -18,6 +18,7 @@
 
 use super::flips::bend_cos;
 use super::smooth::{relax_vertex, ring_valid_in_plane};
+use super::worst::compass;
 use super::state::{drop_faces, edge_faces, link_is_two, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
 use crate::metrics::self_intersection::{face_pair_intersects, self_intersecting_faces};
 use crate::mesh::geometry::{norm, sub, triangle_area};
@@ -36,11 +37,9 @@ const MIN_ANGLE: f64 = 15.0;
 /// Smallest gain (radians) of a smallest angle for a move or flip made for it alone.
 const MIN_GAIN: f64 = 1e-3;
 
-/// Steps of the compass tried around a vertex of a crossing face, in mean planar edge lengths.
+/// Steps of the compass ([`super::worst::compass`]) tried around a vertex of a crossing face,
+/// in mean planar edge lengths.
 const COMPASS_STEPS: [f64; 3] = [0.3, 0.15, 0.07];
-
-/// Directions of the compass.
-const COMPASS_DIRECTIONS: usize = 8;
 
 /// Fractions of the way to the planar neighbour centroid that are tried.
 const FRACTIONS: [f64; 5] = [1.0, 0.75, 0.5, 0.25, 0.1];
@@ -161,24 +160,23 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
             }
         }
     }
-    // A compass around the vertex, scaled by its planar edges: where the map stretches, the
-    // way out of a crossing may lie across the neighbours' directions.
-    let (mut spread, mut count) = (0.0, 0usize);
-    for &t in ring {
-        for &u in &mesh.faces[t as usize] {
-            if u as usize != v && mesh.planar(u) {
-                let p = mesh.plane[u as usize];
-                spread += ((p[0] - q0[0]).powi(2) + (p[1] - q0[1]).powi(2)).sqrt();
-                count += 1;
+    // For a crossing, a compass around the vertex, scaled by its planar edges: where the map
+    // stretches, the way out of a crossing may lie across the neighbours' directions.
+    if now > 0 {
+        let (mut spread, mut count) = (0.0, 0usize);
+        for &t in ring {
+            for &u in &mesh.faces[t as usize] {
+                if u as usize != v && mesh.planar(u) {
+                    let p = mesh.plane[u as usize];
+                    spread += ((p[0] - q0[0]).powi(2) + (p[1] - q0[1]).powi(2)).sqrt();
+                    count += 1;
+                }
             }
         }
-    }
-    if count > 0 && now > 0 {
-        let edge = spread / count as f64;
-        for fraction in COMPASS_STEPS {
-            for k in 0..COMPASS_DIRECTIONS {
-                let angle = std::f64::consts::TAU * k as f64 / COMPASS_DIRECTIONS as f64;
-                candidates.push([q0[0] + fraction * edge * angle.cos(), q0[1] + fraction * edge * angle.sin()]);
+        if count > 0 {
+            let edge = spread / count as f64;
+            for fraction in COMPASS_STEPS {
+                candidates.extend(compass(q0, fraction * edge));
             }
         }
     }

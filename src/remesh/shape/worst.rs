@@ -88,8 +88,16 @@ pub(crate) fn raise_by_search(mesh: &mut Shaping, lift: &SurfaceLift) -> usize {
 /// Largest relative change of a face's area in a [`max_min_angle_search`] move.
 const AREA_CHANGE: f64 = 0.1;
 
-/// Compass directions of [`max_min_angle_search`].
+/// Compass directions of [`max_min_angle_search`] and of the untangling's moves ([`compass`]).
 const DIRECTIONS: usize = 8;
+
+/// The [`DIRECTIONS`] points at distance `h` around the planar point `centre`.
+pub(crate) fn compass(centre: [f64; 2], h: f64) -> impl Iterator<Item = [f64; 2]> {
+    (0..DIRECTIONS).map(move |k| {
+        let angle = std::f64::consts::TAU * k as f64 / DIRECTIONS as f64;
+        [centre[0] + h * angle.cos(), centre[1] + h * angle.sin()]
+    })
+}
 
 /// Step lengths of [`max_min_angle_search`], as fractions of the ring's mean planar edge.
 const SEARCH_STEPS: [f64; 4] = [0.15, 0.07, 0.03, 0.015];
@@ -131,10 +139,7 @@ fn max_min_angle_search(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &
     let mut best: Option<([f64; 2], [f64; 3], u32, f64)> = None;
     for fraction in SEARCH_STEPS {
         let h = fraction * edge;
-        let centre = best.map_or(q0, |b| b.0);
-        for k in 0..DIRECTIONS {
-            let angle = std::f64::consts::TAU * k as f64 / DIRECTIONS as f64;
-            let q = [centre[0] + h * angle.cos(), centre[1] + h * angle.sin()];
+        for q in compass(best.map_or(q0, |b| b.0), h) {
             if !ring_valid_in_plane(mesh, ring, v, q) {
                 continue;
             }
