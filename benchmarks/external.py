@@ -18,16 +18,14 @@ each marked where it misses.
 import argparse
 import gzip
 import os
-import platform
 import subprocess
 import sys
 import tempfile
-import time
 import zipfile
 
 import pymeshlab
 
-from variants import bar_cells, bar_counts, remesh_row, write_report
+from variants import bar_cells, bar_counts, machine_line, remesh_row, write_report
 
 NILEARN = "0.14.1"
 SURFACES = ["pial_left", "pial_right", "white_left", "white_right", "infl_left", "infl_right"]
@@ -70,7 +68,7 @@ def write(rows, args):
     head = [
         "# Remesh quality on anatomical meshes that are not in the repository",
         "",
-        f"Machine: {platform.machine()}, {os.cpu_count()} cores; {platform.platform()}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}.",
+        machine_line(),
         f"One run of `bash benchmarks/external.sh`: FreeSurfer's fsaverage5 surfaces from nilearn {NILEARN}'s wheel on PyPI",
         "(downloaded at run time, not committed), both hemispheres, and pymeshlab's sample bone (`tests/sample_meshes/bone.ply`",
         "of pymeshlab 2025.7.post1), then",

@@ -165,6 +165,11 @@ def bar_counts(rows, faces):
     return [f"Rows meeting every bar at {n} faces: {sum(1 for r in ok if r['target'] == int(n) and not r['misses'])} of {sum(1 for r in rows if r['target'] == int(n))}." for n in faces.split(",")]
 
 
+def machine_line():
+    """The report's line naming the machine and the time of the run."""
+    return f"Machine: {platform.machine()}, {os.cpu_count()} cores; {platform.platform()}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}."
+
+
 def bar_cells(r):
     """A row's table cells from the face count to the self-intersecting faces."""
     return (
@@ -195,7 +200,7 @@ def write(rows, args):
     head = [
         "# Remesh quality on re-triangulated and subdivided copies of the bundled meshes",
         "",
-        f"Machine: {platform.machine()}, {os.cpu_count()} cores; {platform.platform()}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}.",
+        machine_line(),
         f"One run of `bash benchmarks/variants.sh`: each mesh of tests/data re-triangulated by pymeshlab 2025.7.post1",
         "(`iso`: isotropic explicit remeshing, 5 iterations, target edge 0.8% of the diagonal; `dec`: quadric",
         "edge-collapse decimation to a third of the faces, at least 2000, topology and boundary kept; `sub`, meshes",
