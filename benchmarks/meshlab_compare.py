@@ -5,6 +5,8 @@ Methods, all at the same face count (TARGET, 5000 by default):
 - capmesh: the CLI, `target/release/capmesh remesh IN -o OUT --faces N` plus any extra
   arguments from `--capmesh-args` or the CAPMESH_ARGS environment variable (e.g.
   `--capmesh-args "--optimize area"`, to compare variants);
+- capmesh_on_surface: the same with `--placement on-surface` (vertices on the input, as the
+  paper's pull-back; the default fits the faces to it);
 - capmesh_curv: the same with `--sizing curvature` (smaller faces where the surface is curved);
 - capmesh_creases: the same with `--keep-creases` (vertices and edges along sharp edges);
 - MeshLab (pymeshlab): isotropic explicit remeshing (target edge length; its defaults keep
@@ -83,6 +85,7 @@ QUICK_MESHES = ["open_meg_helmet_babysquid_mne", "closed_bunny_npm", "closed_bir
 # (faces fall as its square)).
 METHODS = {
     "capmesh": ("capmesh", "count"),
+    "capmesh_on_surface": ("capmesh --placement on-surface", "count"),
     "capmesh_curv": ("capmesh --sizing curvature", "count"),
     "capmesh_creases": ("capmesh --keep-creases", "count"),
     "isotropic": ("MeshLab isotropic explicit remeshing", "length"),
@@ -293,6 +296,7 @@ def initial_param(method, stats, target):
     edge = edge_for(stats["area"], target)
     return {
         "capmesh": target,
+        "capmesh_on_surface": target,
         "capmesh_curv": target,
         "capmesh_creases": target,
         "isotropic": edge,
@@ -416,6 +420,8 @@ def main():
             def run(method, param, out):
                 if method == "capmesh":
                     return run_capmesh(obj, param, out, extra, args.timeout)
+                if method == "capmesh_on_surface":
+                    return run_capmesh(obj, param, out, extra + ["--placement", "on-surface"], args.timeout)
                 if method == "capmesh_curv":
                     return run_capmesh(obj, param, out, extra + ["--sizing", "curvature"], args.timeout)
                 if method == "capmesh_creases":

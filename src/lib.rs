@@ -65,7 +65,7 @@ pub use progress::{NoProgress, Progress, Stage};
 pub use remesh::shape::{ShapeOptions, ShapeReport};
 pub use remesh::sizing::Sizing;
 pub use remesh::transfer::carry_attribute;
-pub use remesh::{remesh, remesh_located, CapGrid, Optimize, Pieces, RemeshOptions, RemeshReport};
+pub use remesh::{remesh, remesh_located, CapGrid, FitReport, Optimize, Pieces, Placement, RemeshOptions, RemeshReport};
 
 /// The README's examples, compiled as doc tests.
 #[cfg(doctest)]

@@ -417,8 +417,10 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
         (mesh, report)
     };
 
+    assert_eq!(o.placement, CAPMESH_V1_PLACEMENT_FITTED);
     let (shaped, report) = run(&o);
     assert_eq!(report["optimize"], "shape+area", "{}", report["optimize"]);
+    assert_eq!(report["fit"]["fitted"], true, "{}", report["fit"]);
     assert_eq!(report["shape"]["iterations"].as_u64(), Some((shape.relax_iterations + shape.polish_iterations) as u64), "{}", report["shape"]);
     assert_eq!((o.sizing_strength, &report["shape"]["sizing"]), (0.0, &serde_json::json!("uniform")));
     let shaped_share = share_below_30(&shaped);
@@ -441,6 +443,11 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     o.sizing_strength = 2.5;
     let (_, report) = run(&o);
     assert_eq!(report["shape"]["sizing"], "curvature=2.5", "{}", report["shape"]);
+    // The placement is passed through: on the surface, no fit.
+    o.placement = CAPMESH_V1_PLACEMENT_ON_SURFACE;
+    let (_, report) = run(&o);
+    assert_eq!(report["fit"]["fitted"], false, "{}", report["fit"]);
+    assert!(report["quality"]["d_surface_vertex_relative"].as_f64().unwrap() < 1e-9, "{}", report["quality"]);
 
     let mut out = null_mut();
     let mut refused = |o: &capmesh_v1_remesh_options, words: &str| {
@@ -462,6 +469,9 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     let mut bad = capmesh_v1_remesh_options_default();
     bad.keep_creases = -1;
     refused(&bad, "keep_creases = -1");
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.placement = 2;
+    refused(&bad, "placement = 2");
     let mut bad = capmesh_v1_remesh_options_default();
     bad.sizing_strength = -1.0;
     refused(&bad, "sizing_strength = -1");

@@ -254,12 +254,37 @@ fn self_crossing_remeshes_are_reported() {
         let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
         (err, json["self_intersecting_faces"].as_u64().unwrap(), json["self_intersecting_faces_input"].as_u64().unwrap())
     };
-    let (err, crossing, input_crossing) = remesh("plain", &["--optimize", "none"]);
+    let (err, crossing, input_crossing) = remesh("plain", &["--optimize", "none", "--placement", "on-surface"]);
     assert!(crossing > input_crossing, "{crossing} crossing faces (input {input_crossing})");
     assert!(err.contains(&format!("{crossing} faces of the remesh cross another face (the input has {input_crossing})")), "{err}");
     let (err, crossing, _) = remesh("shaped", &[]);
     assert_eq!(crossing, 0);
     assert!(!err.contains("cross another face"), "{err}");
+}
+
+/// `--placement`: fitted by default (the vertices off the surface, the fit's report in the
+/// JSON), on the surface when asked; an unknown placement is refused by name.
+#[test]
+fn the_vertex_placement_is_chosen_on_the_command_line() {
+    let dir = TempDir::new("cli-placement");
+    let input = data("open_lv_endo_rabbit_chaste.obj.gz");
+    let remesh = |name: &str, args: &[&str]| {
+        let report = dir.join(format!("{name}.json"));
+        let out = capmesh().args(["--quiet", "remesh"]).arg(&input).arg("-o").arg(dir.join(format!("{name}.ply"))).args(["--faces", "1000", "--report"]).arg(&report).args(args).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        serde_json::from_str::<serde_json::Value>(&std::fs::read_to_string(&report).unwrap()).unwrap()
+    };
+    let fitted = remesh("fitted", &[]);
+    let on = remesh("on", &["--placement", "on-surface"]);
+    assert_eq!((&fitted["fit"]["fitted"], &on["fit"]["fitted"]), (&serde_json::json!(true), &serde_json::json!(false)));
+    let f = |j: &serde_json::Value, k: &str| j[k].as_f64().unwrap();
+    assert!(f(&on, "d_surface_vertex_relative") < 1e-9 && f(&fitted, "d_surface_vertex_relative") > 0.0);
+    assert!(f(&fitted, "d_surface_sampled_relative") < f(&on, "d_surface_sampled_relative"));
+    let out = capmesh().args(["remesh"]).arg(&input).arg("-o").arg(dir.join("x.ply")).args(["--placement", "floating"]).output().unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("floating") && err.contains("on-surface"), "{err}");
+    assert!(!dir.join("x.ply").exists());
 }
 
 #[test]

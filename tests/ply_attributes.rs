@@ -122,6 +122,9 @@ fn remesh_carries_ply_vertex_properties_by_name() {
         output.to_str().unwrap(),
         "--faces",
         "2000",
+        // On the surface: the linear function is then exact at the remesh's vertices.
+        "--placement",
+        "on-surface",
         "--attribute",
         "quality",
         "--attribute",

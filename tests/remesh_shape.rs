@@ -8,7 +8,7 @@ use capmesh::io::read_mesh;
 use capmesh::mesh::{validate, SurfaceKind, TriMesh};
 use capmesh::progress::NoProgress;
 use capmesh::metrics::angles::angle_quality;
-use capmesh::remesh::{remesh, CapGrid, Optimize, RemeshOptions};
+use capmesh::remesh::{remesh, CapGrid, Optimize, Placement, RemeshOptions};
 use std::path::Path;
 
 fn load(name: &str) -> TriMesh {
@@ -16,7 +16,7 @@ fn load(name: &str) -> TriMesh {
 }
 
 fn run(mesh: &TriMesh, optimize: Optimize) -> (TriMesh, capmesh::remesh::RemeshReport) {
-    let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 }).with_optimize(optimize);
+    let options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 }).with_optimize(optimize);
     remesh(mesh, &options, &NoProgress).unwrap()
 }
 
@@ -311,7 +311,7 @@ fn square_sheet_keeps_its_corners() {
 fn resampling_keeps_the_invariants() {
     let name = "open_lv_endo_rabbit_chaste.obj.gz";
     let mesh = load(name);
-    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
+    let mut options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 });
     assert!(options.shape.resample, "splits and collapses are the default");
     let (out, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
     options.shape = options.shape.with_resample(false);
@@ -335,7 +335,7 @@ fn resampling_keeps_the_invariants() {
 #[test]
 fn curvature_sizing_follows_the_surface_closer() {
     let mesh = load("open_face_choi.obj.gz");
-    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
+    let mut options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 });
     let (_, uniform) = remesh(&mesh, &options, &NoProgress).unwrap();
     options.shape = options.shape.with_sizing("curvature".parse().unwrap());
     let (sized, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
@@ -388,7 +388,7 @@ fn thin_faces_are_moved_for_shape() {
 /// The remesh of `name` at 5000 faces without and with `ShapeOptions::keep_creases`.
 fn without_and_with_creases(name: &str) -> ((TriMesh, capmesh::remesh::RemeshReport), (TriMesh, capmesh::remesh::RemeshReport)) {
     let mesh = load(name);
-    let mut options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 });
+    let mut options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 });
     let plain = remesh(&mesh, &options, &NoProgress).unwrap();
     options.shape = options.shape.with_keep_creases(true);
     (plain, remesh(&mesh, &options, &NoProgress).unwrap())

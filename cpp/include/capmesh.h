@@ -131,6 +131,18 @@
 #define CAPMESH_V1_OPTIMIZE_NONE 2
 
 /**
+ * `capmesh_v1_remesh_options.placement`: the vertices moved along their normals so that the
+ * faces fit the input in the least-squares sense (default; the CLI's `--placement fitted`).
+ */
+#define CAPMESH_V1_PLACEMENT_FITTED 0
+
+/**
+ * `capmesh_v1_remesh_options.placement`: the vertices on the input surface, where the inverse
+ * map puts them (the CLI's `--placement on-surface`).
+ */
+#define CAPMESH_V1_PLACEMENT_ON_SURFACE 1
+
+/**
  * Progress stage: checking the input mesh.
  */
 #define CAPMESH_V1_STAGE_VALIDATE 0
@@ -359,6 +371,11 @@ typedef struct capmesh_v1_remesh_options {
    * `--keep-creases`); 0 = off (default).
    */
   int32_t keep_creases;
+  /**
+   * One of `CAPMESH_V1_PLACEMENT_*`: where the vertices are put at the end. Default fitted
+   * (0).
+   */
+  int32_t placement;
 } capmesh_v1_remesh_options;
 
 /**

@@ -190,6 +190,12 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     keep_creases = on ? 1 : 0;
     return *this;
   }
+  /// Leave the vertices on the input surface (true) instead of fitting the faces to it in the
+  /// least-squares sense (the default; the CLI's `--placement`).
+  RemeshOptions &with_vertices_on_surface(bool on) {
+    placement = on ? CAPMESH_V1_PLACEMENT_ON_SURFACE : CAPMESH_V1_PLACEMENT_FITTED;
+    return *this;
+  }
   /// Uniform grid of about `faces` faces.
   static RemeshOptions uniform(uint32_t faces) {
     RemeshOptions o;

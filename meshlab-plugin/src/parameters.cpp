@@ -124,6 +124,11 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 		"Put vertices on the input's sharp edges (faces bent by more than 60 degrees, also at the "
 		"remesh's scale) and join them by edges: a smaller distance to the input on surfaces with "
 		"real sharp edges; off by default (a finely remeshed segmentation's steps count too)."));
+	list.addParam(RichBool(
+		"VerticesOnSurface", d.placement == CAPMESH_V1_PLACEMENT_ON_SURFACE, "Vertices on the surface",
+		"Leave the vertices on the input surface. Off by default: they are moved along their "
+		"normals so that the faces fit the input in the least-squares sense (a smaller mean "
+		"distance to it; the faces of a remesh on the surface are chords, inside convex parts)."));
 	addParamOptions(list, d.param);
 }
 
@@ -146,6 +151,7 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 	o.resample = list.getBool("Resample") ? 1 : 0;
 	o.sizing_strength = double(list.getFloat("SizingStrength"));
 	o.keep_creases = list.getBool("KeepCreases") ? 1 : 0;
+	o.placement = list.getBool("VerticesOnSurface") ? CAPMESH_V1_PLACEMENT_ON_SURFACE : CAPMESH_V1_PLACEMENT_FITTED;
 	o.param = readParamOptions(list);
 	return o;
 }

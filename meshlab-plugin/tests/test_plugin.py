@@ -52,7 +52,7 @@ def test_filters_are_registered_with_capmesh_defaults(plugin, mesh_file):
     assert remesh["optimize"] == 0  # shape+area
     assert remesh["relaxiterations"] == 40 and remesh["polishiterations"] == 85 and remesh["areasteps"] == 6
     assert remesh["shapeweight"] == pytest.approx(0.1) and remesh["resample"]
-    assert remesh["sizingstrength"] == 0.0 and not remesh["keepcreases"]
+    assert remesh["sizingstrength"] == 0.0 and not remesh["keepcreases"] and not remesh["verticesonsurface"]
     assert ms.filter_parameter_values("capmesh_harmonics_reconstruction")["order"] > 0
 
 
@@ -326,7 +326,9 @@ def test_remesh_keeps_vertex_colour_and_quality(plugin, mesh_file):
     ms = coloured(mesh_file, OPEN_MESH)
     source = ms.current_mesh()
     assert source.has_vertex_color() and source.has_vertex_scalar()
-    report = ms.apply_filter("capmesh_remesh", faces=2000)
+    # On the surface: the carried values are the input's at each vertex (fitted vertices sit
+    # off the surface by a fraction of an edge, their values those of their surface points).
+    report = ms.apply_filter("capmesh_remesh", faces=2000, verticesonsurface=True)
     assert report["carried_vertex_color"] and report["carried_vertex_quality"]
     out = ms.current_mesh()
     assert out.has_vertex_color() and out.has_vertex_scalar()
@@ -351,9 +353,25 @@ def test_remesh_keeps_vertex_colour_and_quality(plugin, mesh_file):
 def test_closed_surface_remesh_keeps_quality(plugin, mesh_file):
     ms = coloured(mesh_file, CLOSED_MESH)
     scale = np.abs(linear(ms.current_mesh().vertex_matrix())).max()
-    ms.apply_filter("capmesh_remesh", faces=2000)
+    ms.apply_filter("capmesh_remesh", faces=2000, verticesonsurface=True)
     out = ms.current_mesh()
     assert np.abs(out.vertex_scalar_array() - linear(out.vertex_matrix())).max() < 1e-5 * scale
+
+
+def test_remesh_vertices_are_fitted_unless_asked_on_the_surface(plugin, mesh_file):
+    remeshes = []
+    for on_surface in (False, True):
+        ms = load(mesh_file, CLOSED_MESH)
+        ms.apply_filter("capmesh_remesh", faces=1000, verticesonsurface=on_surface)
+        remeshes.append(ms.current_mesh())
+    fitted, on = remeshes
+    assert fitted.face_number() == on.face_number()
+    # The fitted vertices move along their normals: outward on average on this closed,
+    # mostly convex surface, by a fraction of an edge.
+    centre = on.vertex_matrix().mean(axis=0)
+    r_fit = np.linalg.norm(fitted.vertex_matrix() - centre, axis=1).mean()
+    r_on = np.linalg.norm(on.vertex_matrix() - centre, axis=1).mean()
+    assert r_fit > r_on
 
 
 def test_input_texture_coordinates_are_the_map(plugin, mesh_file):

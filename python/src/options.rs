@@ -14,7 +14,7 @@ use crate::errors::input;
 /// The parameterization options shared by `parameterize` and `remesh` (the CLI's `MapArgs`).
 pub const MAP_OPTIONS: [&str; 8] = ["initial", "lambda_", "open_lambda", "no_lambda_fallback", "smoothing", "area_refinement", "puncture_end", "search_sites"];
 /// The options of `remesh` only.
-pub const REMESH_OPTIONS: [&str; 9] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "area_steps", "shape_weight", "no_resample", "sizing", "keep_creases"];
+pub const REMESH_OPTIONS: [&str; 10] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "area_steps", "shape_weight", "no_resample", "sizing", "keep_creases", "placement"];
 
 fn parsed<T: std::str::FromStr<Err = String>>(value: &Bound<'_, PyAny>) -> PyResult<T> {
     let text: String = value.str()?.extract()?;
@@ -82,6 +82,7 @@ pub fn remesh(grid: capmesh::CapGrid, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
             "no_resample" => options.shape = options.shape.clone().with_resample(!number::<bool>(&name, &value)?),
             "sizing" => options.shape = options.shape.clone().with_sizing(parsed::<capmesh::Sizing>(&value)?),
             "keep_creases" => options.shape = options.shape.clone().with_keep_creases(number::<bool>(&name, &value)?),
+            "placement" => options.placement = parsed::<capmesh::Placement>(&value)?,
             _ => return Err(unknown(&name, &[&MAP_OPTIONS[..], &REMESH_OPTIONS[..]].concat())),
         }
     }

@@ -8,7 +8,7 @@ use crate::refine::Smoothing;
 use crate::flatten::closed::DEFAULT_LAMBDA;
 use crate::remesh::shape::ShapeOptions;
 use crate::remesh::sizing::Sizing;
-use crate::remesh::{CapGrid, Optimize, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
+use crate::remesh::{CapGrid, Optimize, Placement, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
 
 /// `capmesh_v1_param_options.domain`: the adaptive cap of the paper (default).
 pub const CAPMESH_V1_DOMAIN_ADAPTIVE: i32 = 0;
@@ -44,6 +44,13 @@ pub const CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA: i32 = 0;
 pub const CAPMESH_V1_OPTIMIZE_AREA: i32 = 1;
 /// `capmesh_v1_remesh_options.optimize`: the paper's plain pull-back of the cap grid.
 pub const CAPMESH_V1_OPTIMIZE_NONE: i32 = 2;
+
+/// `capmesh_v1_remesh_options.placement`: the vertices moved along their normals so that the
+/// faces fit the input in the least-squares sense (default; the CLI's `--placement fitted`).
+pub const CAPMESH_V1_PLACEMENT_FITTED: i32 = 0;
+/// `capmesh_v1_remesh_options.placement`: the vertices on the input surface, where the inverse
+/// map puts them (the CLI's `--placement on-surface`).
+pub const CAPMESH_V1_PLACEMENT_ON_SURFACE: i32 = 1;
 
 /// Parameterization options. Start from `capmesh_v1_param_options_default()`.
 #[allow(non_camel_case_types)]
@@ -110,6 +117,9 @@ pub struct capmesh_v1_remesh_options {
     /// 1 = put vertices on the input's creases and join them by edges (the CLI's
     /// `--keep-creases`); 0 = off (default).
     pub keep_creases: i32,
+    /// One of `CAPMESH_V1_PLACEMENT_*`: where the vertices are put at the end. Default fitted
+    /// (0).
+    pub placement: i32,
 }
 
 /// The defaults documented on each field.
@@ -147,6 +157,10 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
             Sizing::Curvature { strength } => strength,
         },
         keep_creases: i32::from(shape.keep_creases),
+        placement: match crate::remesh::Placement::default() {
+            Placement::Fitted => CAPMESH_V1_PLACEMENT_FITTED,
+            Placement::OnSurface => CAPMESH_V1_PLACEMENT_ON_SURFACE,
+        },
     }
 }
 
@@ -238,6 +252,11 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         1 => true,
         k => return Err(Failure::invalid_argument(format!("keep_creases = {k} is not 0 (off) or 1 (on)"))),
     };
+    let placement = match o.placement {
+        CAPMESH_V1_PLACEMENT_FITTED => Placement::Fitted,
+        CAPMESH_V1_PLACEMENT_ON_SURFACE => Placement::OnSurface,
+        p => return Err(Failure::invalid_argument(format!("placement = {p} is not 0 (fitted) or 1 (on-surface)"))),
+    };
     let sizing = match finite("sizing_strength", o.sizing_strength)? {
         s if s == 0.0 => Sizing::Uniform,
         s if s > 0.0 => Sizing::Curvature { strength: s },
@@ -259,5 +278,6 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         shape,
         // The C ABI keeps the default: specks dropped, larger pieces refused.
         pieces: crate::remesh::Pieces::default(),
+        placement,
     })
 }

@@ -66,6 +66,10 @@ pub(crate) struct FromCap {
     /// remesh faces): every
     /// start has them, so they do not send [`from_best_start`] to the next one.
     pub slivers_at_rim: usize,
+    /// Which vertices the stages kept in place (the rim, the bottom).
+    pub fixed: Vec<bool>,
+    /// The least-squares vertex placement (made last, [`super::fit`]).
+    pub fit: super::FitReport,
 }
 
 /// The mean smallest angle (degrees) a remesh from a start must reach, with no crossing face
@@ -328,5 +332,5 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
     let mean_min_angle_deg = crate::metrics::angles::angle_quality_of(&positions, &faces).mean_min_angle_deg;
     let (_, d_face_relative) = crate::metrics::remeshing::area_deviation(&positions, &faces);
     let slivers_at_rim = if shaped && closed { shape::uncross::slivers_on_fixed_edges(&positions, &faces, &has_plane, &fixed) } else { 0 };
-    Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds, mean_min_angle_deg, d_face_relative, slivers_at_rim })
+    Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds, mean_min_angle_deg, d_face_relative, slivers_at_rim, fixed, fit: super::FitReport::default() })
 }

@@ -2,6 +2,7 @@
 //! latitude/longitude mesh of the cap `Z >= Z*`, pull it back onto the surface.
 
 pub(crate) mod equalize;
+pub(crate) mod fit;
 pub(crate) mod from_cap;
 pub(crate) mod grid;
 pub(crate) mod locate;
@@ -10,6 +11,8 @@ pub(crate) mod sample;
 pub mod shape;
 pub(crate) mod sizing;
 pub(crate) mod transfer;
+
+pub use fit::FitReport;
 
 use crate::refine::area_refine::AreaRefineReport;
 use crate::param::{parameterize, ParamOptions, ParamReport, PunctureEnd};
@@ -102,6 +105,42 @@ impl std::str::FromStr for Optimize {
     }
 }
 
+/// Where the remesh's vertices are put once its faces are made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub enum Placement {
+    /// Moved along their normals so that the faces fit the surface in the least-squares sense
+    /// (docs/method.md section 22): a lower mean distance to the input at the same faces, the vertices off the
+    /// surface by a fraction of a face's sagitta. The default.
+    #[default]
+    #[serde(rename = "fitted")]
+    Fitted,
+    /// On the input surface, where the inverse map puts them (the paper's pull-back, with
+    /// [`Optimize::None`]): the faces are chords of the surface.
+    #[serde(rename = "on-surface")]
+    OnSurface,
+}
+
+impl Placement {
+    /// The name used by the CLI and the JSON report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Placement::OnSurface => "on-surface",
+            Placement::Fitted => "fitted",
+        }
+    }
+}
+
+impl std::str::FromStr for Placement {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "on-surface" => Ok(Placement::OnSurface),
+            "fitted" => Ok(Placement::Fitted),
+            _ => Err(format!("unknown vertex placement {s:?}: use fitted (default) or on-surface")),
+        }
+    }
+}
+
 /// Options of [`remesh`]. Build them from [`RemeshOptions::default`] with the `with_*` setters
 /// (or by setting fields): new options may be added without notice.
 #[derive(Debug, Clone)]
@@ -123,6 +162,8 @@ pub struct RemeshOptions {
     pub shape: shape::ShapeOptions,
     /// What is done with an input in several pieces. Default [`Pieces::DropSpecks`].
     pub pieces: Pieces,
+    /// Where the vertices are put at the end. Default [`Placement::Fitted`].
+    pub placement: Placement,
 }
 
 /// What [`remesh`] does with an input made of several pieces (capmesh maps one surface at a
@@ -179,6 +220,12 @@ impl RemeshOptions {
         self.pieces = pieces;
         self
     }
+
+    /// Set where the vertices are put at the end.
+    pub fn with_placement(mut self, placement: Placement) -> Self {
+        self.placement = placement;
+        self
+    }
 }
 
 impl Default for RemeshOptions {
@@ -190,6 +237,7 @@ impl Default for RemeshOptions {
             optimize: Optimize::default(),
             shape: shape::ShapeOptions::default(),
             pieces: Pieces::default(),
+            placement: Placement::default(),
         }
     }
 }
@@ -205,6 +253,8 @@ pub struct RemeshReport {
     pub shape: shape::ShapeReport,
     /// The area equalization of the pulled-back mesh.
     pub area_equalization: AreaRefineReport,
+    /// The least-squares vertex placement ([`Placement::Fitted`]; `fitted` false otherwise).
+    pub fit: FitReport,
     /// Quality of the result against the input.
     pub quality: RemeshMetrics,
     /// Seconds of the whole remeshing (parameterization and quality metrics included).
@@ -258,7 +308,8 @@ pub fn remesh(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) 
 
 /// [`remesh`], also returning each remesh vertex's point of the input surface (face and
 /// barycentric coordinates, through the inverse map): what [`transfer::carry_attribute`]
-/// carries per-vertex data with.
+/// carries per-vertex data with. A vertex fitted off the surface ([`Placement::Fitted`]) gets
+/// the surface point it was moved from along its normal.
 pub fn remesh_located(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     crate::pool::on_pool(progress, |progress| remesh_here(mesh, options, progress, true))
 }
@@ -296,7 +347,19 @@ fn remesh_with(mesh: &TriMesh, map: &CapMap, options: &RemeshOptions, shaped: bo
     } else {
         from_cap::pull_back_and_optimize(&ctx, cap, progress)?
     };
-    let points = if locate { transfer::surface_points(&inverse, &result.planar, &result.has_plane, &result.positions) } else { Vec::new() };
+    let mut result = result;
+    // The vertices' surface points (where they are, unless fitted off the surface).
+    let mut on_surface = Vec::new();
+    if options.placement == Placement::Fitted {
+        let sweeps = match options.optimize {
+            Optimize::None => 0,
+            _ => options.area_equalization,
+        };
+        let input = fit::FitInput { faces: &result.faces, has_plane: &result.has_plane, fixed: &result.fixed, sweeps };
+        result.fit = fit::fit_to_surface(&inverse, &input, &mut result.planar, &mut result.positions, &mut on_surface);
+    }
+    let surface = if on_surface.is_empty() { &result.positions } else { &on_surface };
+    let points = if locate { transfer::surface_points(&inverse, &result.planar, &result.has_plane, surface) } else { Vec::new() };
     Ok((result, points))
 }
 
@@ -447,7 +510,7 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
             }
         }
     }
-    let from_cap::FromCap { faces, planar: _, positions, has_plane: _, shape: shape_report, equalization, pullback_seconds, shape_seconds, equalize_seconds, .. } = result;
+    let from_cap::FromCap { faces, planar: _, positions, has_plane: _, shape: shape_report, equalization, pullback_seconds, shape_seconds, equalize_seconds, fit, .. } = result;
     let out = TriMesh::new(positions, faces);
     let t_metrics = Instant::now();
     let quality = remesh_metrics(mesh, &out);
@@ -457,6 +520,7 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
         optimize: options.optimize,
         shape: shape_report,
         area_equalization: equalization,
+        fit,
         quality,
         seconds: start.elapsed().as_secs_f64(),
         pullback_seconds,

@@ -158,6 +158,12 @@ enum Command {
         /// default only specks of at most 1% of the area are dropped, larger pieces refused).
         #[arg(long)]
         largest_piece: bool,
+        /// Vertex placement: fitted (the default: moved along their normals so that the faces
+        /// fit the input in the least-squares sense, a lower mean distance to it; the vertices
+        /// leave the surface by a fraction of a face's sagitta) or on-surface (on the input,
+        /// the faces its chords; with --optimize none, the paper's plain pull-back).
+        #[arg(long, default_value = "fitted")]
+        placement: capmesh::Placement,
         /// Face sizing: uniform (equal areas, the default) or curvature[=S] (smaller faces
         /// where the surface is curved, density 1 + S k L at the same face count; S = 3).
         #[arg(long, default_value = "uniform")]
@@ -327,7 +333,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let basis = basis.kind()?;
             shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, basis, groups, quiet: cli.quiet })
         }
-        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, area_steps, shape_weight, no_resample, keep_creases, largest_piece, sizing, figures, map } => {
+        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, area_steps, shape_weight, no_resample, keep_creases, largest_piece, placement, sizing, figures, map } => {
             remesh_cmd::run(remesh_cmd::RemeshArgs {
                 input,
                 output,
@@ -346,6 +352,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 no_resample,
                 keep_creases,
                 largest_piece,
+                placement,
                 sizing,
                 figures,
                 map,

@@ -28,6 +28,7 @@ pub struct RemeshArgs {
     pub no_resample: bool,
     pub keep_creases: bool,
     pub largest_piece: bool,
+    pub placement: capmesh::Placement,
     pub sizing: capmesh::Sizing,
     pub figures: Option<PathBuf>,
     pub map: map_args::MapArgs,
@@ -58,6 +59,7 @@ struct Flat<'a> {
     optimize: capmesh::remesh::Optimize,
     shape: capmesh::remesh::shape::ShapeReport,
     area_equalization: capmesh::refine::area_refine::AreaRefineReport,
+    fit: capmesh::FitReport,
     parameterization: &'a capmesh::ParamReport,
 }
 
@@ -81,6 +83,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         no_resample,
         keep_creases,
         largest_piece,
+        placement,
         sizing,
         figures,
         map,
@@ -98,7 +101,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     let bar = cli_progress::Bar::new(quiet);
     let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
     let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_area_steps(area_steps).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing).with_keep_creases(keep_creases);
-    let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape);
+    let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape).with_placement(placement);
     if largest_piece {
         options = options.with_pieces(capmesh::Pieces::Largest);
     }
@@ -185,6 +188,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
                 optimize: rep.optimize,
                 shape: rep.shape,
                 area_equalization: rep.area_equalization,
+                fit: rep.fit,
                 parameterization: &rep.param,
             },
         )?);
