@@ -24,12 +24,13 @@
 //! and a uniform one (a sphere's) free; the area equalization then runs again towards each
 //! face's area before the fit, each vertex moving in the plane and carrying its offset. The
 //! vertices of faces that cross another face once fitted, where the remesh before the fit had
-//! fewer crossing faces, go back where they were. docs/method.md section 22.
+//! fewer crossing faces, or whose smallest angle fell below 15 degrees, go back where they were. docs/method.md section 22.
 
 use crate::cap::InverseMap;
 use crate::linalg::jacobi_cg2;
 use crate::mesh::geometry::{cross, dot, face_areas, norm, sub};
 use crate::mesh::TriMesh;
+use crate::metrics::angles::face_angle_range;
 use crate::metrics::self_intersection::self_intersecting_faces;
 use crate::refine::area_refine::{refine_towards, RefineOptions};
 use rayon::prelude::*;
@@ -75,10 +76,13 @@ const AREA_WEIGHT: f64 = 2.309_401_076_758_503;
 /// Largest offset, relative to the vertex's mean edge (an equilateral ring of its area).
 const MAX_OFFSET: f64 = 0.3;
 
-/// Rounds of putting the vertices of faces that cross after the fit back where they were
-/// (then all of them).
+/// Rounds of putting the vertices of faces that cross, or became thin, after the fit back
+/// where they were (then all of them).
 const UNCROSS_ROUNDS: usize = 3;
 
+/// A face whose smallest angle the fit takes below this (degrees, the bar of issue 26) and
+/// below its own before the fit has its vertices put back.
+const THIN_DEG: f64 = 15.0;
 /// What the least-squares vertex placement did ([`Placement::Fitted`](super::Placement::Fitted); docs/method.md section 22).
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct FitReport {
@@ -96,8 +100,8 @@ pub struct FitReport {
     pub max_offset_relative: f64,
     /// Conjugate-gradient iterations.
     pub iterations: usize,
-    /// Vertices put back where they were before the fit because their faces crossed others
-    /// once fitted (all of them when that was not enough).
+    /// Vertices put back where they were before the fit because their faces crossed others or
+    /// became thin once fitted (all of them when that was not enough).
     pub put_back: usize,
 }
 
@@ -298,17 +302,22 @@ pub(crate) fn fit_to_surface(inverse: &InverseMap, input: &FitInput, planar: &mu
     }
     // The vertices' surface points after the equalization (the stayed ones where they were).
     *on_surface = (0..planar.len()).into_par_iter().map(|v| if stays[v] { positions[v] } else { surface_point(v, planar[v]).unwrap_or(positions[v]) }).collect();
-    // Faces that cross once fitted where the remesh before the fit had fewer: the vertices of
-    // the crossing faces go back to where they were, and all of them if that is not enough.
+    // Faces that cross once fitted where the remesh before the fit had fewer, and faces whose
+    // smallest angle the fit took below THIN_DEG: the vertices of those faces go back to where
+    // they were, and all of them if that is not enough.
     let crossing_before = self_intersecting_faces(&TriMesh::new(positions.to_vec(), faces.to_vec())).len();
+    let smallest = |x: &[[f64; 3]]| -> Vec<f64> { faces.par_iter().map(|f| face_angle_range(x[f[0] as usize], x[f[1] as usize], x[f[2] as usize]).0).collect() };
+    let smallest_before = smallest(positions);
     let mut back = vec![false; planar.len()];
-    let mut crossing = self_intersecting_faces(&TriMesh::new(fitted.clone(), faces.to_vec()));
     for round in 0..=UNCROSS_ROUNDS {
-        if crossing.len() <= crossing_before {
+        let crossing = self_intersecting_faces(&TriMesh::new(fitted.clone(), faces.to_vec()));
+        let crossing: Vec<u32> = if crossing.len() > crossing_before { crossing } else { Vec::new() };
+        let thin = smallest(&fitted).iter().zip(&smallest_before).enumerate().filter(|(_, (&a, &b))| a < THIN_DEG && a < b).map(|(t, _)| t as u32).collect::<Vec<u32>>();
+        if crossing.is_empty() && thin.is_empty() {
             break;
         }
         let all = round == UNCROSS_ROUNDS;
-        let vertices: Vec<usize> = if all { (0..planar.len()).collect() } else { crossing.iter().flat_map(|&t| faces[t as usize]).map(|v| v as usize).collect() };
+        let vertices: Vec<usize> = if all { (0..planar.len()).collect() } else { crossing.iter().chain(&thin).flat_map(|&t| faces[t as usize]).map(|v| v as usize).collect() };
         for v in vertices {
             back[v] = true;
             fitted[v] = positions[v];
@@ -318,7 +327,6 @@ pub(crate) fn fit_to_surface(inverse: &InverseMap, input: &FitInput, planar: &mu
         if all {
             break;
         }
-        crossing = self_intersecting_faces(&TriMesh::new(fitted.clone(), faces.to_vec()));
     }
     positions.copy_from_slice(&fitted);
     let (rms_after, samples) = rms(&sample_faces(inverse, positions, planar, input));
