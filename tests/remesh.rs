@@ -151,12 +151,20 @@ fn coarse_inputs_remesh_without_zero_area_faces() {
     ];
     for (name, mesh) in cases {
         for grid in [CapGrid::Uniform { faces: 5000 }, CapGrid::LatLong { rings: 40, sectors: 64 }] {
-            let (out, rep) = remesh(&mesh, &RemeshOptions::default().with_grid(grid).with_placement(Placement::OnSurface), &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"));
-            let (input_kind, _) = validate(&mesh).unwrap();
-            let (kind, _) = validate(&out).unwrap_or_else(|e| panic!("{name} {grid:?}: remeshed mesh invalid: {e}"));
-            assert_eq!(kind, input_kind, "{name} {grid:?}");
-            assert_eq!(rep.quality.zero_area_faces, 0, "{name} {grid:?}: zero-area faces");
-            assert!(rep.quality.d_surface_vertex_relative < 1e-9, "{name} {grid:?}: vertices off the surface");
+            for placement in [Placement::OnSurface, Placement::Fitted] {
+                let (out, rep) = remesh(&mesh, &RemeshOptions::default().with_grid(grid).with_placement(placement), &NoProgress).unwrap_or_else(|e| panic!("{name}: {e}"));
+                let (input_kind, _) = validate(&mesh).unwrap();
+                let (kind, _) = validate(&out).unwrap_or_else(|e| panic!("{name} {grid:?} {placement:?}: remeshed mesh invalid: {e}"));
+                assert_eq!(kind, input_kind, "{name} {grid:?} {placement:?}");
+                assert_eq!(rep.quality.zero_area_faces, 0, "{name} {grid:?} {placement:?}: zero-area faces");
+                assert!(out.vertices.iter().flatten().all(|x| x.is_finite()), "{name} {grid:?} {placement:?}");
+                if placement == Placement::OnSurface {
+                    assert!(rep.quality.d_surface_vertex_relative < 1e-9, "{name} {grid:?}: vertices off the surface");
+                } else {
+                    // The fit lowered its own measure (sampled distances along the faces' normals).
+                    assert!(rep.fit.rms_after <= rep.fit.rms_before * (1.0 + 1e-9), "{name} {grid:?}: {:?}", rep.fit);
+                }
+            }
         }
     }
 }
