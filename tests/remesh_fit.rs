@@ -37,12 +37,13 @@ fn a_sphere_is_fitted_from_outside() {
 }
 
 /// On a closed and an open anatomical surface: at least a third off the sampled distance,
-/// the areas and angles within the bars of issue 26, no crossing face.
+/// the areas and angles within the bars of issue 26, no crossing face, the open one's boundary
+/// on the input's.
 #[test]
 fn anatomical_surfaces_are_fitted_closer() {
     for name in ["closed_hippocampus_choi.obj.gz", "open_lv_endo_rabbit_chaste.obj.gz"] {
         let mesh = read_mesh(&common::data(name)).unwrap();
-        let [(_, f), (_, c)] = both(&mesh, 3000);
+        let [(fitted, f), (_, c)] = both(&mesh, 3000);
         let (qf, qc) = (&f.quality, &c.quality);
         eprintln!("{name}: d_surf {:.3e} vs {:.3e}, d_face {:.4} vs {:.4}, mean smallest angle {:.2} vs {:.2}", qf.d_surface_sampled_relative, qc.d_surface_sampled_relative, qf.d_face_relative, qc.d_face_relative, qf.mean_min_angle_deg, qc.mean_min_angle_deg);
         assert!(qf.d_surface_sampled_relative < 0.67 * qc.d_surface_sampled_relative, "{name}");
@@ -51,5 +52,11 @@ fn anatomical_surfaces_are_fitted_closer() {
         assert_eq!(qf.self_intersecting_faces, 0, "{name}");
         assert_eq!(qf.zero_area_faces, 0, "{name}");
         assert_eq!((qf.faces, qf.vertices), (qc.faces, qc.vertices), "{name}: the fit changes no connectivity");
+        // An open remesh's boundary stays on the input's boundary.
+        let distance = capmesh::metrics::closest::SurfaceDistance::new(&mesh);
+        let boundary = capmesh::mesh::topology::is_boundary_vertex(&fitted);
+        let off = fitted.vertices.iter().zip(&boundary).filter(|(_, &b)| b).map(|(&p, _)| distance.distance(p)).fold(0.0, f64::max);
+        assert!(off <= 1e-9 * mesh.bounding_box_diagonal(), "{name}: a boundary vertex {off} off the input");
+        assert_eq!(boundary.iter().any(|&b| b), name.starts_with("open"), "{name}");
     }
 }
