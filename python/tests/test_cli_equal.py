@@ -72,6 +72,16 @@ def test_remesh_equals_cli(cli, tmp_path):
     assert done.returncode == 0, done.stderr
     assert capmesh.metrics((v, f), (cli_v, cli_f)) == json.loads(done.stdout)
 
+    # The placement keyword is the CLI's --placement (fitted by default, above).
+    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet", "--placement", "on-surface")
+    assert done.returncode == 0, done.stderr
+    on_surface = json.loads(report.read_text())
+    pv, pf, prep = capmesh.remesh(v, f, faces_target=1000, placement="on-surface")
+    assert prep["fit"]["fitted"] is False and on_surface["fit"]["fitted"] is False and expected["fit"]["fitted"] is True
+    assert prep["quality"]["d_surface_sampled"] == on_surface["d_surface_sampled"]
+    with pytest.raises(capmesh.InputError, match="unknown vertex placement"):
+        capmesh.remesh(v, f, faces_target=1000, placement="floating")
+
 
 def test_lat_long_grid_and_options():
     v, f = capmesh.read_mesh(OPEN_MESH)
