@@ -233,27 +233,37 @@ fn remesh_located_gives_each_vertex_its_input_point() {
     let arrays = Arrays::of(&mesh);
     let mut options = capmesh_v1_remesh_options_default();
     options.faces = 1500;
-    let mut out = null_mut();
-    let status = unsafe { capmesh_v1_remesh_located(&arrays.view(), &options, None, null_mut(), &mut out, null_mut()) };
-    assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
-    let nv = unsafe { capmesh_v1_mesh_vertex_count(out) };
-    let positions = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_positions(out), 3 * nv) };
-    let faces = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_source_faces(out), nv) };
-    let weights = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_source_barycentrics(out), 3 * nv) };
-    // Each vertex is the barycentric combination of its input face's corners.
     let diag = mesh.bounding_box_diagonal();
-    let mut worst = 0.0f64;
-    for v in 0..nv {
-        let corners = mesh.faces[faces[v] as usize].map(|c| mesh.vertices[c as usize]);
-        let w = &weights[3 * v..3 * v + 3];
-        assert!(w.iter().all(|&b| b >= 0.0) && (w.iter().sum::<f64>() - 1.0).abs() < 1e-9, "vertex {v}: weights {w:?}");
-        for k in 0..3 {
-            let want = w[0] * corners[0][k] + w[1] * corners[1][k] + w[2] * corners[2][k];
-            worst = worst.max((positions[3 * v + k] - want).abs());
+    // The largest distance between a remesh vertex and its source point.
+    let worst_of = |options: &capmesh_v1_remesh_options| {
+        let mut out = null_mut();
+        let status = unsafe { capmesh_v1_remesh_located(&arrays.view(), options, None, null_mut(), &mut out, null_mut()) };
+        assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+        let nv = unsafe { capmesh_v1_mesh_vertex_count(out) };
+        let positions = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_positions(out), 3 * nv) };
+        let faces = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_source_faces(out), nv) };
+        let weights = unsafe { std::slice::from_raw_parts(capmesh_v1_mesh_source_barycentrics(out), 3 * nv) };
+        let mut worst = 0.0f64;
+        for v in 0..nv {
+            let corners = mesh.faces[faces[v] as usize].map(|c| mesh.vertices[c as usize]);
+            let w = &weights[3 * v..3 * v + 3];
+            assert!(w.iter().all(|&b| b >= 0.0) && (w.iter().sum::<f64>() - 1.0).abs() < 1e-9, "vertex {v}: weights {w:?}");
+            for k in 0..3 {
+                let want = w[0] * corners[0][k] + w[1] * corners[1][k] + w[2] * corners[2][k];
+                worst = worst.max((positions[3 * v + k] - want).abs());
+            }
         }
-    }
+        unsafe { capmesh_v1_mesh_free(out) };
+        worst
+    };
+    // On the surface each vertex is the barycentric combination of its input face's corners;
+    // fitted (the default) it is off that point along its normal by a fraction of an edge.
+    let fitted = worst_of(&options);
+    let mut on_surface = options;
+    on_surface.placement = CAPMESH_V1_PLACEMENT_ON_SURFACE;
+    let worst = worst_of(&on_surface);
     assert!(worst <= 1e-6 * diag, "a remesh vertex is {worst} from its source point (diagonal {diag})");
-    unsafe { capmesh_v1_mesh_free(out) };
+    assert!(fitted > worst && fitted <= 0.01 * diag, "a fitted vertex is {fitted} from its source point (diagonal {diag})");
 
     // The plain remesh records no sources.
     let mut plain = null_mut();

@@ -383,7 +383,8 @@ void cap_map_openmesh() {
   for (int k = 0; k < 3; ++k) d = std::max(d, std::fabs(p[k] - point.position[k]));
   CHECK(d < 1e-5);
   capmesh::Arrays arrays = capmesh::openmesh::to_arrays(input);
-  auto located = capmesh::remesh_located(arrays.view(), capmesh::RemeshOptions::uniform(1500));
+  // On the surface (fitted vertices sit off their source points along their normals).
+  auto located = capmesh::remesh_located(arrays.view(), capmesh::RemeshOptions::uniform(1500).with_vertices_on_surface(true));
   const uint32_t *faces = located.mesh.source_faces();
   const double *weights = located.mesh.source_barycentrics();
   CHECK(faces != nullptr && weights != nullptr);

@@ -109,8 +109,8 @@ impl std::str::FromStr for Optimize {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 pub enum Placement {
     /// Moved along their normals so that the faces fit the surface in the least-squares sense
-    /// (docs/method.md section 22): a lower mean distance to the input at the same faces, the vertices off the
-    /// surface by a fraction of a face's sagitta. The default.
+    /// (docs/method.md section 22): a lower mean distance to the input at the same faces, the
+    /// vertices off the surface by a fraction of a face's sagitta. The default.
     #[default]
     #[serde(rename = "fitted")]
     Fitted,
@@ -328,7 +328,7 @@ fn remesh_with(mesh: &TriMesh, map: &CapMap, options: &RemeshOptions, shaped: bo
     let inverse = map.inverse(mesh)?;
     let input_boundary = is_boundary_vertex(mesh);
     let ctx = from_cap::Context { mesh, map, inverse: &inverse, options, closed, shaped, input_boundary: &input_boundary, input_crossings };
-    let result = if shaped {
+    let mut result = if shaped {
         // The shape stage starts from an isotropic sample of the surface where the grid's
         // lift is stretched ([`from_cap::from_best_start`]). Cap points are lifted as in the
         // pull-back: inside the polygon the planar map covers.
@@ -347,7 +347,6 @@ fn remesh_with(mesh: &TriMesh, map: &CapMap, options: &RemeshOptions, shaped: bo
     } else {
         from_cap::pull_back_and_optimize(&ctx, cap, progress)?
     };
-    let mut result = result;
     // The vertices' surface points (where they are, unless fitted off the surface).
     let mut on_surface = Vec::new();
     if options.placement == Placement::Fitted {
