@@ -11,10 +11,9 @@
 //! measured on the surface through the inverse map. Every accepted move keeps the planar
 //! triangles' orientation, so the result stays an embedding pulled back from the cap.
 
-use super::locate::Locator;
+use super::locate::{LastFaces, Locator};
 use crate::refine::area_refine::{refine_towards, AreaRefineReport, RefineOptions};
 use crate::mesh::TriMesh;
-use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Equalize the areas of `out` (the remesh `faces` pulled back onto `surface` from the planar
 /// points `plane`, one per vertex; both updated in place) towards areas proportional to
@@ -39,12 +38,11 @@ pub fn equalize_areas(
     // The refinement lifts a vertex's points near its last one (its position's
     // finite-difference neighbours, its trial steps, the next sweep's): each vertex's
     // queries try the triangle of its last query first.
-    let last_face: Vec<AtomicU32> = (0..plane.len()).map(|_| AtomicU32::new(u32::MAX)).collect();
+    let last_face = LastFaces::new(plane.len());
     let lift = |v: usize, q: [f64; 2]| -> [f64; 3] {
-        let hint = last_face.get(v).map(|h| h.load(Ordering::Relaxed)).filter(|&h| h != u32::MAX).map(|h| h as usize);
-        let found = locator.locate_near(q, hint);
-        if let (Some(h), Some(loc)) = (last_face.get(v), found) {
-            h.store(loc.face as u32, Ordering::Relaxed);
+        let found = locator.locate_near(q, last_face.get(v));
+        if let Some(loc) = &found {
+            last_face.set(v, loc.face);
         }
         match found {
             Some(loc) => {

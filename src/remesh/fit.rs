@@ -28,13 +28,13 @@
 
 use crate::cap::InverseMap;
 use crate::linalg::jacobi_cg2;
-use crate::mesh::geometry::{cross, dot, face_areas, norm, sub};
+use super::locate::LastFaces;
+use crate::mesh::geometry::{add, cross, dot, face_areas, norm, sub};
 use crate::mesh::TriMesh;
 use crate::metrics::angles::face_angle_range;
 use crate::metrics::self_intersection::self_intersecting_faces;
 use crate::refine::area_refine::{refine_towards, RefineOptions};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Barycentric coordinates of the samples of a face: the centroid, the three points halfway
 /// between it and the corners' side, and the three edge midpoints (the face's chord error is
@@ -276,27 +276,16 @@ pub(crate) fn fit_to_surface(inverse: &InverseMap, input: &FitInput, planar: &mu
     let offset_of = |v: usize| normals[v].map(|x| x * offsets[v]);
     // The equalization moves a vertex in the plane and puts it at the surface point plus its
     // offset; each vertex's lifts start from its last face.
-    let last_face: Vec<AtomicU32> = (0..planar.len()).map(|_| AtomicU32::new(u32::MAX)).collect();
+    let last_face = LastFaces::new(planar.len());
     let surface_point = |v: usize, q: [f64; 2]| -> Option<[f64; 3]> {
-        let hint = last_face.get(v).map(|h| h.load(Ordering::Relaxed)).filter(|&h| h != u32::MAX).map(|h| h as usize);
-        let (p, face) = inverse.locate_plane_near(q, hint)?;
-        if let Some(h) = last_face.get(v) {
-            h.store(face as u32, Ordering::Relaxed);
-        }
+        let (p, face) = inverse.locate_plane_near(q, last_face.get(v))?;
+        last_face.set(v, face);
         Some(p.position)
     };
-    let lift = |v: usize, q: [f64; 2]| -> [f64; 3] {
-        match surface_point(v, q) {
-            Some(p) => {
-                let o = offset_of(v);
-                [p[0] + o[0], p[1] + o[1], p[2] + o[2]]
-            }
-            None => [f64::NAN; 3],
-        }
-    };
+    let lift = |v: usize, q: [f64; 2]| -> [f64; 3] { surface_point(v, q).map_or([f64::NAN; 3], |p| add(p, offset_of(v))) };
     let before_planar = planar.to_vec();
     let stays: Vec<bool> = (0..planar.len()).map(|v| input.fixed[v] || !input.has_plane[v]).collect();
-    let mut fitted: Vec<[f64; 3]> = positions.iter().enumerate().map(|(v, p)| if stays[v] { *p } else { let o = offset_of(v); [p[0] + o[0], p[1] + o[1], p[2] + o[2]] }).collect();
+    let mut fitted: Vec<[f64; 3]> = positions.iter().enumerate().map(|(v, &p)| if stays[v] { p } else { add(p, offset_of(v)) }).collect();
     if input.sweeps > 0 {
         refine_towards(planar, &mut fitted, &target, faces, &stays, &lift, RefineOptions::plain(input.sweeps));
     }

@@ -302,6 +302,31 @@ fn box_distance(lo: [f64; 2], hi: [f64; 2], p: [f64; 2]) -> f64 {
     (dx * dx + dy * dy).sqrt()
 }
 
+/// Each vertex's last located face, the hint of its next query: lifts made while a vertex moves
+/// (finite differences, trial steps, the next sweep's) land near its last one. Shared by the
+/// parallel lifts of [`crate::refine::area_refine::refine_towards`]; the answers of
+/// [`Locator::locate_near`] do not depend on the hint, so neither do the results.
+pub(crate) struct LastFaces(Vec<std::sync::atomic::AtomicU32>);
+
+impl LastFaces {
+    /// No face yet for any of `n` vertices.
+    pub(crate) fn new(n: usize) -> Self {
+        Self((0..n).map(|_| std::sync::atomic::AtomicU32::new(u32::MAX)).collect())
+    }
+
+    /// Vertex `v`'s last face, if it has one.
+    pub(crate) fn get(&self, v: usize) -> Option<usize> {
+        self.0.get(v).map(|h| h.load(std::sync::atomic::Ordering::Relaxed)).filter(|&h| h != u32::MAX).map(|h| h as usize)
+    }
+
+    /// Record `face` as vertex `v`'s last.
+    pub(crate) fn set(&self, v: usize, face: usize) {
+        if let Some(h) = self.0.get(v) {
+            h.store(face as u32, std::sync::atomic::Ordering::Relaxed);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
