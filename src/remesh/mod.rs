@@ -6,6 +6,7 @@ pub(crate) mod fit;
 pub(crate) mod from_cap;
 pub(crate) mod grid;
 pub(crate) mod locate;
+mod options;
 pub(crate) mod pullback;
 pub(crate) mod sample;
 pub mod shape;
@@ -13,9 +14,10 @@ pub(crate) mod sizing;
 pub(crate) mod transfer;
 
 pub use fit::FitReport;
+pub use options::{CapGrid, Optimize, Pieces, Placement, RemeshOptions, DEFAULT_AREA_EQUALIZATION, MAX_GRID_FACES};
 
 use crate::refine::area_refine::AreaRefineReport;
-use crate::param::{parameterize, ParamOptions, ParamReport, PunctureEnd};
+use crate::param::{parameterize, ParamReport, PunctureEnd};
 use crate::error::Error;
 use crate::cap::{stereographic, CapMap, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
@@ -26,221 +28,6 @@ use crate::metrics::{remesh_metrics, RemeshMetrics};
 use crate::progress::{self, Progress, Stage};
 use rayon::prelude::*;
 use std::time::Instant;
-
-/// Which cap mesh to pull back.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum CapGrid {
-    /// Near-equilateral faces of near-equal area, about this many faces. Default 5000.
-    Uniform {
-        /// Target face count.
-        faces: usize,
-    },
-    /// Latitude rings x longitude sectors with a fan at the pole.
-    LatLong {
-        /// Rings from the pole to the cap's rim.
-        rings: usize,
-        /// Meridians.
-        sectors: usize,
-    },
-}
-
-impl Default for CapGrid {
-    fn default() -> Self {
-        CapGrid::Uniform { faces: 5000 }
-    }
-}
-
-/// Most cap faces a remesh may ask for: 50 million faces (25 million vertices, several GiB
-/// with the metrics' index) is far beyond any anatomical remesh, and an accidental huge count
-/// would otherwise run until memory is exhausted.
-pub const MAX_GRID_FACES: u64 = 50_000_000;
-
-impl CapGrid {
-    /// About how many faces the cap mesh has (the lat/long grid: a fan and two triangles per
-    /// quad), saturating instead of overflowing.
-    pub fn approximate_faces(&self) -> u64 {
-        match *self {
-            CapGrid::Uniform { faces } => faces as u64,
-            CapGrid::LatLong { rings, sectors } => (sectors as u64).saturating_mul((2 * rings as u64).saturating_sub(1)),
-        }
-    }
-}
-
-/// What is optimised after the pull-back.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
-pub enum Optimize {
-    /// Shape (flips and tangential relaxation on the surface, [`shape`]) then the area
-    /// equalization: isotropic triangles of near-equal area. The default.
-    #[default]
-    #[serde(rename = "shape+area")]
-    ShapeAndArea,
-    /// The area equalization alone: the cap grid's connectivity, near-equal areas.
-    #[serde(rename = "area")]
-    Area,
-    /// The paper's plain pull-back (Sec. 4.2).
-    #[serde(rename = "none")]
-    None,
-}
-
-impl Optimize {
-    /// The name used by the CLI and the JSON report.
-    pub fn name(self) -> &'static str {
-        match self {
-            Optimize::ShapeAndArea => "shape+area",
-            Optimize::Area => "area",
-            Optimize::None => "none",
-        }
-    }
-}
-
-impl std::str::FromStr for Optimize {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "shape+area" => Ok(Optimize::ShapeAndArea),
-            "area" => Ok(Optimize::Area),
-            "none" => Ok(Optimize::None),
-            _ => Err(format!("unknown optimisation {s:?}: use shape+area (default), area or none")),
-        }
-    }
-}
-
-/// Where the remesh's vertices are put once its faces are made.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
-pub enum Placement {
-    /// Moved along their normals so that the faces fit the surface in the least-squares sense
-    /// (docs/method.md section 22): a lower mean distance to the input at the same faces, the
-    /// vertices off the surface by a fraction of a face's sagitta. The default.
-    #[default]
-    #[serde(rename = "fitted")]
-    Fitted,
-    /// On the input surface, where the inverse map puts them (the paper's pull-back, with
-    /// [`Optimize::None`]): the faces are chords of the surface.
-    #[serde(rename = "on-surface")]
-    OnSurface,
-}
-
-impl Placement {
-    /// The name used by the CLI and the JSON report.
-    pub fn name(self) -> &'static str {
-        match self {
-            Placement::OnSurface => "on-surface",
-            Placement::Fitted => "fitted",
-        }
-    }
-}
-
-impl std::str::FromStr for Placement {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "on-surface" => Ok(Placement::OnSurface),
-            "fitted" => Ok(Placement::Fitted),
-            _ => Err(format!("unknown vertex placement {s:?}: use fitted (default) or on-surface")),
-        }
-    }
-}
-
-/// Options of [`remesh`]. Build them from [`RemeshOptions::default`] with the `with_*` setters
-/// (or by setting fields): new options may be added without notice.
-#[derive(Debug, Clone)]
-#[non_exhaustive]
-pub struct RemeshOptions {
-    /// The cap mesh. Default uniform with 5000 faces.
-    pub grid: CapGrid,
-    /// Parameterization options (adaptive cap by default).
-    pub param: ParamOptions,
-    /// Sweeps of the area equalization of the pulled-back mesh with [`Optimize::Area`] (see
-    /// `equalize`; after the shape stage, [`shape::ShapeOptions::area_sweeps`]); 0 pulls
-    /// the cap mesh back as the paper does. Default [`DEFAULT_AREA_EQUALIZATION`].
-    pub area_equalization: usize,
-    /// What is optimised after the pull-back. Default [`Optimize::ShapeAndArea`]; the
-    /// latitude/longitude grid keeps its grid lines (its purpose) and gets the area
-    /// equalization only.
-    pub optimize: Optimize,
-    /// The shape stage's options.
-    pub shape: shape::ShapeOptions,
-    /// What is done with an input in several pieces. Default [`Pieces::DropSpecks`].
-    pub pieces: Pieces,
-    /// Where the vertices are put at the end. Default [`Placement::Fitted`].
-    pub placement: Placement,
-}
-
-/// What [`remesh`] does with an input made of several pieces (capmesh maps one surface at a
-/// time).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[non_exhaustive]
-pub enum Pieces {
-    /// Remesh the piece of largest area when the others hold at most
-    /// [`DROPPED_AREA_SHARE`] of the area (the specks a segmentation leaves); refuse the input
-    /// otherwise. The default.
-    #[default]
-    DropSpecks,
-    /// Remesh the piece of largest area whatever the others hold (two lungs or hemispheres
-    /// in one file: the larger one), reported as for specks.
-    Largest,
-}
-
-/// Sweeps of the area equalization by default.
-pub const DEFAULT_AREA_EQUALIZATION: usize = 30;
-
-impl RemeshOptions {
-    /// Set the cap mesh.
-    pub fn with_grid(mut self, grid: CapGrid) -> Self {
-        self.grid = grid;
-        self
-    }
-
-    /// Set the parameterization's options.
-    pub fn with_param(mut self, param: ParamOptions) -> Self {
-        self.param = param;
-        self
-    }
-
-    /// Set the sweeps of the area equalization of the pulled-back mesh.
-    pub fn with_area_equalization(mut self, area_equalization: usize) -> Self {
-        self.area_equalization = area_equalization;
-        self
-    }
-
-    /// Set what is optimised after the pull-back.
-    pub fn with_optimize(mut self, optimize: Optimize) -> Self {
-        self.optimize = optimize;
-        self
-    }
-
-    /// Set the shape stage's options.
-    pub fn with_shape(mut self, shape: shape::ShapeOptions) -> Self {
-        self.shape = shape;
-        self
-    }
-
-    /// Set what is done with an input in several pieces.
-    pub fn with_pieces(mut self, pieces: Pieces) -> Self {
-        self.pieces = pieces;
-        self
-    }
-
-    /// Set where the vertices are put at the end.
-    pub fn with_placement(mut self, placement: Placement) -> Self {
-        self.placement = placement;
-        self
-    }
-}
-
-impl Default for RemeshOptions {
-    fn default() -> Self {
-        Self {
-            grid: CapGrid::default(),
-            param: ParamOptions::default(),
-            area_equalization: DEFAULT_AREA_EQUALIZATION,
-            optimize: Optimize::default(),
-            shape: shape::ShapeOptions::default(),
-            pieces: Pieces::default(),
-            placement: Placement::default(),
-        }
-    }
-}
 
 /// What [`remesh`] measured.
 #[derive(Debug, Clone, serde::Serialize)]
