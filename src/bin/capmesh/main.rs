@@ -165,7 +165,8 @@ enum Command {
         #[arg(long, default_value = "fitted")]
         placement: capmesh::Placement,
         /// Face sizing: uniform (equal areas, the default) or curvature[=S] (smaller faces
-        /// where the surface is curved, density 1 + S k L at the same face count; S = 3).
+        /// where the surface is curved, density 1 + S k L at the same face count; S = 3; each
+        /// face's area is the surface it covers, so folds finer than the faces keep vertices).
         #[arg(long, default_value = "uniform")]
         sizing: capmesh::Sizing,
         /// Write figures (PNG, SVG) and an index.md linking them into this directory.

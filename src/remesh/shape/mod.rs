@@ -15,6 +15,10 @@
 //! 3. the last flips, removals of vertices at slivers (`sliver`) and moves of the vertices of
 //!    the faces still thin, weighted for shape (`worst`).
 //!
+//! The areas are the faces' chord areas, or with `--sizing curvature` the surface areas they
+//! cover (`covered`), so that a remesh coarser than the surface's folds keeps its vertices in
+//! them.
+//!
 //! The stage starts from the pulled-back cap grid or, where that lift is stretched, from an
 //! isotropic sample of the surface (`super::sample`, chosen by `super::remesh`).
 //! A closed surface's rim and bottom disk may first be merged into one vertex (`bottom`).
@@ -24,6 +28,7 @@
 
 pub(crate) mod bottom;
 pub(crate) mod boundary;
+pub(crate) mod covered;
 pub(crate) mod crease;
 pub(crate) mod flips;
 pub(crate) mod global_area;
@@ -55,7 +60,8 @@ pub struct ShapeOptions {
     pub polish_iterations: usize,
     /// Global area steps (`global_area`): Gauss-Newton steps of the area term over all free
     /// vertices at once, one every 5 polish iterations from the polish's first (0: none).
-    /// Default 6 (docs/method.md, "Remesh shape").
+    /// Default 6 (docs/method.md, "Remesh shape"). A sized remesh makes none (its areas
+    /// are covered areas, docs/method.md section 19).
     pub area_steps: usize,
     /// Split long and collapse short edges in the first half of the relaxation
     /// (`resample`), where the map is resolved at the remesh's scale. Default on: it raised
@@ -63,7 +69,9 @@ pub struct ShapeOptions {
     pub resample: bool,
     /// Weight `mu` of the shape term against the area term in the polish. Default 0.1: with
     /// the polish as the last area step, 0.1 gave both lower d_face_rel and a higher mean
-    /// smallest angle than 0.3 on the shared meshes (docs/method.md, "Remesh shape").
+    /// smallest angle than 0.3 on the shared meshes (docs/method.md, "Remesh shape"). A sized
+    /// remesh weighs the shape term ten times this (its areas are covered areas,
+    /// docs/method.md section 19).
     pub shape_weight: f64,
     /// Sweeps of the pure-area equalization after the shape stage. Default 0: they lowered the
     /// mean smallest angle by 2-3 degrees for the area the polish gains as well.
@@ -72,7 +80,9 @@ pub struct ShapeOptions {
     /// the flip, unless the old pair was bent more: sharper edges are creases and are kept.
     /// Default 60.
     pub crease_deg: f64,
-    /// Face sizing (`super::sizing`): uniform (the default) or curvature-adapted.
+    /// Face sizing (`super::sizing`): uniform (the default) or curvature-adapted. A sized
+    /// remesh measures its faces by the surface they cover rather than by their chords
+    /// (docs/method.md section 19, "Covered areas").
     pub sizing: super::sizing::Sizing,
     /// Put vertices on the input's creases (edges bent by more than `crease_deg`, in chains
     /// of at least 3 edge lengths) and join them by edges (`crease`). Default off: it more
@@ -200,6 +210,13 @@ pub struct ShapeReport {
     pub uncross: UncrossReport,
 }
 
+/// The factor on [`ShapeOptions::shape_weight`] when the faces are measured by the surface
+/// they cover (a sized remesh): covered areas and chord shapes pull apart where the remesh
+/// bridges a fold, and at the uniform weight the sized remeshes' mean smallest angle fell to
+/// 45.8-46.8 degrees on the shared meshes; at ten times it is 47-48.5 with the same surface
+/// distances (docs/method.md section 19).
+const COVERED_SHAPE_FACTOR: f64 = 10.0;
+
 /// The edge length of equilateral faces of `mesh`'s mean area.
 fn target_length(mesh: &Shaping) -> f64 {
     (4.0 * polish::ln_mean_area(mesh).exp() / 3f64.sqrt()).sqrt()
@@ -304,7 +321,11 @@ pub(crate) fn optimize_shape(
         report.corners_kept = boundary::pin_corners(&mut mesh, &incidence, track, &mut arc, scale);
     }
     let crease = options.crease_deg.to_radians();
-    let (lloyd, mu) = (options.relax_iterations, options.shape_weight);
+    // A sized remesh measures its faces by the surface they cover (`covered`): fidelity is
+    // what sizing is for.
+    let by_covered = options.sizing != super::sizing::Sizing::Uniform;
+    let on_cap = input.lift.inverse().map().report.z_star.is_some();
+    let (lloyd, mu) = (options.relax_iterations, if by_covered { COVERED_SHAPE_FACTOR * options.shape_weight } else { options.shape_weight });
     // The target edge length: equilateral faces of the pulled-back mesh's mean area.
     let target_len = target_length(&mesh);
     let (faces0, mut len_factor) = (mesh.faces.len(), 1.0f64);
@@ -361,11 +382,12 @@ pub(crate) fn optimize_shape(
         let targets = ln_face_targets(&mesh, &face_rho);
         let target = |t: usize| targets[t];
         let weight = |t: usize| face_rho[t];
+        let covered = if by_covered { covered::Covered::new(&mesh, on_cap) } else { None };
         // A global area step every AREA_STEP_SPACING polish iterations from the first
         // (global_area): the smooth part of the area error in one solve.
         let polish_it = it.checked_sub(lloyd);
         let global = match polish_it {
-            Some(k) if k % global_area::AREA_STEP_SPACING == 0 && k / global_area::AREA_STEP_SPACING < options.area_steps => global_area::global_area_step(&mesh, &incidence, &target, global_area::SMOOTHNESS, &mut area_solver),
+            Some(k) if !by_covered && k % global_area::AREA_STEP_SPACING == 0 && k / global_area::AREA_STEP_SPACING < options.area_steps => global_area::global_area_step(&mesh, &incidence, &target, global_area::SMOOTHNESS, &mut area_solver),
             _ => None,
         };
         report.area_steps += usize::from(global.is_some());
@@ -375,10 +397,10 @@ pub(crate) fn optimize_shape(
                 .map(|&v| {
                     let v_ = v as usize;
                     let step = match (mesh.role[v_], input.track) {
-                        (Role::Free, _) if it < lloyd => smooth::relax_vertex(&mesh, &incidence, v_, input.lift, &weight).map(|(q, x, h)| (q, x, h, 0.0)),
+                        (Role::Free, _) if it < lloyd => smooth::relax_vertex(&mesh, &incidence, v_, input.lift, &weight, covered.as_ref()).map(|(q, x, h)| (q, x, h, 0.0)),
                         (Role::Free, _) => match &global {
                             Some(u) => global_area::move_vertex(&mesh, &incidence, v_, input.lift, u[v_]),
-                            None => polish::polish_vertex(&mesh, &incidence, v_, input.lift, &target, mu),
+                            None => polish::polish_vertex(&mesh, &incidence, v_, input.lift, &target, mu, covered.as_ref()),
                         }
                         .map(|(q, x, h)| (q, x, h, 0.0)),
                         (Role::Boundary, Some(track)) => boundary::slide_vertex(&mesh, &incidence, track, &arc, v_, prev[v_] as usize, next[v_] as usize).map(|(q, x, s)| (q, x, u32::MAX, s)),
@@ -420,7 +442,8 @@ pub(crate) fn optimize_shape(
         // Thin faces left by the last flips and removals: their vertices moved for shape.
         let rho = vertex_densities(&mesh, input.lift, input.density);
         let targets = ln_face_targets(&mesh, &face_densities(&mesh.faces, &rho));
-        let (moves, flips) = worst::raise_smallest_angles(&mut mesh, input.lift, &|t| targets[t], crease);
+        let covered = if by_covered { covered::Covered::new(&mesh, on_cap) } else { None };
+        let (moves, flips) = worst::raise_smallest_angles(&mut mesh, input.lift, &|t| targets[t], covered.as_ref(), crease);
         report.angle_moves = moves;
         report.flips += flips;
         // The moves and flips for shape can leave a vertex of valence 3 or 4 at a sliver

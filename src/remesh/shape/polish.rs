@@ -8,6 +8,7 @@
 //! through the inverse map; it is halved until the local sum falls with every incident face
 //! valid in the plane and on the surface.
 
+use super::covered::Covered;
 use super::smooth::{ring_faces_same_side, ring_jacobian, ring_valid_in_plane};
 use super::state::{Incidence, Shaping, SurfaceLift};
 use crate::mesh::geometry::{cross, dot, norm, sub};
@@ -48,15 +49,32 @@ fn residual_values(x: [f64; 3], a: [f64; 3], b: [f64; 3], ln_target: f64, sqrt_m
     Some([area.ln() - ln_target, sqrt_mu * (l / (EQUILATERAL * area)).ln()])
 }
 
-/// The local energy of vertex `v` at surface point `x`.
-fn local_energy(mesh: &Shaping, ring: &[u32], v: usize, x: [f64; 3], ln_target: &dyn Fn(usize) -> f64, sqrt_mu: f64) -> Option<f64> {
+/// The local energy of vertex `v` at surface point `x` (planar point `q`); with `covered`
+/// the area residual of each face with a planar point at every corner is its covered area's.
+#[allow(clippy::too_many_arguments)]
+fn local_energy(mesh: &Shaping, ring: &[u32], v: usize, x: [f64; 3], q: [f64; 2], covered: Option<&Covered>, ln_target: &dyn Fn(usize) -> f64, sqrt_mu: f64) -> Option<f64> {
     let mut e = 0.0;
     for &t in ring {
         let (a, b) = others(mesh, t, v);
-        let r = residual_values(x, a, b, ln_target(t as usize), sqrt_mu)?;
+        let mut r = residual_values(x, a, b, ln_target(t as usize), sqrt_mu)?;
+        if let Some((ln_area, _)) = covered_residual(mesh, covered, t, v, q) {
+            r[0] = ln_area - ln_target(t as usize);
+        }
         e += r[0] * r[0] + r[1] * r[1];
     }
     Some(e)
+}
+
+/// `ln` of the covered area of face `t` with `v` at planar point `q`, and its gradient with
+/// respect to `q` (`None` without `covered`, or when a corner has no planar point).
+fn covered_residual(mesh: &Shaping, covered: Option<&Covered>, t: u32, v: usize, q: [f64; 2]) -> Option<(f64, [f64; 2])> {
+    let covered = covered?;
+    let f = mesh.faces[t as usize];
+    if !f.iter().all(|&u| mesh.planar(u)) {
+        return None;
+    }
+    let k = f.iter().position(|&u| u as usize == v)?;
+    covered.ln_area_and_gradient(q, mesh.plane[f[(k + 1) % 3] as usize], mesh.plane[f[(k + 2) % 3] as usize])
 }
 
 /// The other two corners of face `t`, in the face's order after `v`.
@@ -68,8 +86,9 @@ fn others(mesh: &Shaping, t: u32, v: usize) -> ([f64; 3], [f64; 3]) {
 
 /// The polished position of free vertex `v`: planar point, surface point and hint, or
 /// `None` when no step lowers its energy. `ln_target(t)` is `ln` of face `t`'s target area;
-/// `mu` weighs the shape term.
-pub(crate) fn polish_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &SurfaceLift, ln_target: &dyn Fn(usize) -> f64, mu: f64) -> Option<([f64; 2], [f64; 3], u32)> {
+/// `mu` weighs the shape term; with `covered` the area term is of the surface areas the
+/// faces cover ([`Covered`]) instead of their chord areas.
+pub(crate) fn polish_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &SurfaceLift, ln_target: &dyn Fn(usize) -> f64, mu: f64, covered: Option<&Covered>) -> Option<([f64; 2], [f64; 3], u32)> {
     let ring = incidence.of(v);
     if ring.is_empty() {
         return None;
@@ -81,9 +100,17 @@ pub(crate) fn polish_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lif
     let (mut h, mut g, mut e0) = (Matrix2::zeros(), Vector2::zeros(), 0.0);
     for &t in ring {
         let (a, b) = others(mesh, t, v);
-        let (r, grad) = residuals(x0, a, b, ln_target(t as usize), sqrt_mu)?;
+        let (mut r, grad) = residuals(x0, a, b, ln_target(t as usize), sqrt_mu)?;
+        // The covered area's gradient is planar already.
+        let planar_area = covered_residual(mesh, covered, t, v, mesh.plane[v]);
+        if let Some((ln_area, _)) = planar_area {
+            r[0] = ln_area - ln_target(t as usize);
+        }
         for k in 0..2 {
-            let gp = j.tr_mul(&Vector3::from(grad[k]));
+            let gp = match planar_area {
+                Some((_, g)) if k == 0 => Vector2::from(g),
+                _ => j.tr_mul(&Vector3::from(grad[k])),
+            };
             g += gp * r[k];
             h += gp * gp.transpose();
             e0 += r[k] * r[k];
@@ -105,7 +132,7 @@ pub(crate) fn polish_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lif
         let q = [q0[0] + step * dq[0], q0[1] + step * dq[1]];
         if ring_valid_in_plane(mesh, ring, v, q) {
             if let Some((x, face)) = lift.lift(q, mesh.hint[v]) {
-                if ring_faces_same_side(mesh, ring, v, x) && local_energy(mesh, ring, v, x, ln_target, sqrt_mu).is_some_and(|e| e < e0) {
+                if ring_faces_same_side(mesh, ring, v, x) && local_energy(mesh, ring, v, x, q, covered, ln_target, sqrt_mu).is_some_and(|e| e < e0) {
                     return Some((q, x, face));
                 }
             }

@@ -9,6 +9,7 @@
 //! exactly on the surface. A move is halved until every incident planar face keeps its
 //! orientation and every incident surface face keeps facing the same side as before.
 
+use super::covered::Covered;
 use super::state::{Incidence, Shaping, SurfaceLift};
 use crate::mesh::geometry::{cross, dot, norm, sub, triangle_area};
 use nalgebra::{Matrix2, Matrix3x2, Vector2, Vector3};
@@ -18,8 +19,10 @@ const HALVINGS: usize = 5;
 
 /// The relaxed position of vertex `v`: its new planar point, surface point and hint, or
 /// `None` when no step keeps the one-ring valid. `weight(t)` is the density weight of face
-/// `t` (1 for uniform density).
-pub(crate) fn relax_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &SurfaceLift, weight: &dyn Fn(usize) -> f64) -> Option<([f64; 2], [f64; 3], u32)> {
+/// `t` (1 for uniform density); each face's mass is its chord area, or with `covered` the
+/// surface area it covers ([`Covered`]; faces without a planar point at every corner keep
+/// their chord area).
+pub(crate) fn relax_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &SurfaceLift, weight: &dyn Fn(usize) -> f64, covered: Option<&Covered>) -> Option<([f64; 2], [f64; 3], u32)> {
     let ring = incidence.of(v);
     if ring.is_empty() {
         return None;
@@ -32,7 +35,11 @@ pub(crate) fn relax_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift
         let f = mesh.faces[t as usize];
         let [a, b, c] = f.map(|u| mesh.position[u as usize]);
         let n = cross(sub(b, a), sub(c, a));
-        let w = 0.5 * norm(n) * weight(t as usize);
+        let area = match covered {
+            Some(c) if f.iter().all(|&u| mesh.planar(u)) => c.area(f.map(|u| mesh.plane[u as usize])),
+            _ => 0.5 * norm(n),
+        };
+        let w = area * weight(t as usize);
         for k in 0..3 {
             centroid[k] += w * (a[k] + b[k] + c[k]) / 3.0;
             normal[k] += n[k];

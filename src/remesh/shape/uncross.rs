@@ -148,7 +148,7 @@ fn uncross_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &Surfac
         let c = [c[0] / k, c[1] / k];
         candidates.extend(FRACTIONS.iter().map(|&s| [q0[0] + s * (c[0] - q0[0]), q0[1] + s * (c[1] - q0[1])]));
     }
-    if let Some((q, _, _)) = relax_vertex(mesh, incidence, v, lift, &|_| 1.0) {
+    if let Some((q, _, _)) = relax_vertex(mesh, incidence, v, lift, &|_| 1.0, None) {
         candidates.push(q);
     }
     // Towards each neighbour: a fold may open in one direction only.

@@ -10,6 +10,7 @@
 //! smallest angle does ([`max_min_angle_search`]), and once more after the last untangling.
 
 use super::flips::flip_to_max_min_angle;
+use super::covered::Covered;
 use super::polish::polish_vertex;
 use super::smooth::{ring_faces_same_side, ring_valid_in_plane};
 use super::uncross::{faces_around, local_crossings};
@@ -33,9 +34,10 @@ const PASSES: usize = 4;
 const MIN_GAIN: f64 = 1e-4;
 
 /// Move the free vertices of `mesh`'s faces below [`RAISE_BELOW_DEG`] where that raises the
-/// smallest angle of their faces (`ln_target(t)`: `ln` of face `t`'s target area; `crease` as
-/// in [`flip_to_max_min_angle`]). Returns the vertex moves and the flips made.
-pub(crate) fn raise_smallest_angles(mesh: &mut Shaping, lift: &SurfaceLift, ln_target: &dyn Fn(usize) -> f64, crease: f64) -> (usize, usize) {
+/// smallest angle of their faces (`ln_target(t)`: `ln` of face `t`'s target area, of the
+/// areas `covered` measures when given; `crease` as in [`flip_to_max_min_angle`]). Returns
+/// the vertex moves and the flips made.
+pub(crate) fn raise_smallest_angles(mesh: &mut Shaping, lift: &SurfaceLift, ln_target: &dyn Fn(usize) -> f64, covered: Option<&Covered>, crease: f64) -> (usize, usize) {
     let threshold = RAISE_BELOW_DEG.to_radians();
     let (mut moves, mut flips) = (0, 0);
     for _ in 0..PASSES {
@@ -46,7 +48,7 @@ pub(crate) fn raise_smallest_angles(mesh: &mut Shaping, lift: &SurfaceLift, ln_t
             let v = v as usize;
             let ring = incidence.of(v);
             let before = ring_least(mesh, ring, v, mesh.position[v], smallest_angle);
-            let step = polish_vertex(mesh, &incidence, v, lift, ln_target, SHAPE_WEIGHT)
+            let step = polish_vertex(mesh, &incidence, v, lift, ln_target, SHAPE_WEIGHT, covered)
                 .filter(|&(_, x, _)| ring_least(mesh, ring, v, x, smallest_angle) > before + MIN_GAIN)
                 .or_else(|| max_min_angle_search(mesh, &incidence, v, lift, before));
             if let Some((q, x, hint)) = step {
