@@ -6,6 +6,9 @@ on anatomical meshes that are not in the repository").
   (`pip download nilearn==NILEARN --no-deps`, not installed, not committed), the GIFTI surfaces
   are taken from it: pial (the folded outer surface, sulci closed to a few voxels), white (the
   grey/white boundary) and inflated, both hemispheres.
+- The Conte69 32k midthickness surfaces (32492 vertices per hemisphere, closed genus 0; Van Essen
+  et al. 2012) ship inside BrainSpace's wheel on PyPI (brainspace/datasets/surfaces/*.gii),
+  downloaded the same way.
 - pymeshlab's sample bone (`pymeshlab/tests/sample_meshes/bone.ply` in the benchmark's venv: a
   long bone, 3022 faces, closed genus 0).
 Then `capmesh remesh --faces N` runs on each (N = 5000 and 20000 by default) with the default
@@ -28,22 +31,33 @@ import pymeshlab
 from variants import bar_cells, bar_counts, machine_line, remesh_row, write_report
 
 NILEARN = "0.14.1"
+BRAINSPACE = "0.3.0"
 SURFACES = ["pial_left", "pial_right", "white_left", "white_right", "infl_left", "infl_right"]
 
 
+def wheel(work, requirement):
+    """The wheel of `requirement` downloaded (not installed) into its own folder of `work`."""
+    wheels = os.path.join(work, "wheel_" + requirement.split("==")[0])
+    subprocess.run([sys.executable, "-m", "pip", "download", "-q", "--no-deps", "--disable-pip-version-check", "-d", wheels, requirement], check=True)
+    return next(os.path.join(wheels, w) for w in os.listdir(wheels) if w.endswith(".whl"))
+
+
 def surfaces(work):
-    """The fsaverage5 GIFTI surfaces of nilearn's wheel, unpacked into `work`, and pymeshlab's
-    sample bone: name -> path."""
-    wheels = os.path.join(work, "wheel")
-    subprocess.run([sys.executable, "-m", "pip", "download", "-q", "--no-deps", "--disable-pip-version-check", "-d", wheels, f"nilearn=={NILEARN}"], check=True)
-    wheel = next(os.path.join(wheels, w) for w in os.listdir(wheels) if w.endswith(".whl"))
+    """The fsaverage5 GIFTI surfaces of nilearn's wheel and the Conte69 ones of BrainSpace's,
+    unpacked into `work`, and pymeshlab's sample bone: name -> path."""
     paths = {}
-    with zipfile.ZipFile(wheel) as z:
+    with zipfile.ZipFile(wheel(work, f"nilearn=={NILEARN}")) as z:
         for name in SURFACES:
             path = os.path.join(work, f"fsaverage5_{name}.gii")
             with open(path, "wb") as out:
                 out.write(gzip.decompress(z.read(f"nilearn/datasets/data/fsaverage5/{name}.gii.gz")))
             paths[name] = path
+    with zipfile.ZipFile(wheel(work, f"brainspace=={BRAINSPACE}")) as z:
+        for hemi in ["lh", "rh"]:
+            path = os.path.join(work, f"conte69_32k_{hemi}.gii")
+            with open(path, "wb") as out:
+                out.write(z.read(f"brainspace/datasets/surfaces/conte69_32k_{hemi}.gii"))
+            paths[f"conte69_32k_{hemi}"] = path
     paths["pymeshlab_bone"] = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshes", "bone.ply")
     return paths
 
@@ -70,6 +84,7 @@ def write(rows, args):
         "",
         machine_line(),
         f"One run of `bash benchmarks/external.sh`: FreeSurfer's fsaverage5 surfaces from nilearn {NILEARN}'s wheel on PyPI",
+        f"and the Conte69 32k midthickness surfaces from BrainSpace {BRAINSPACE}'s wheel",
         "(downloaded at run time, not committed), both hemispheres, and pymeshlab's sample bone (`tests/sample_meshes/bone.ply`",
         "of pymeshlab 2025.7.post1), then",
         f"`capmesh remesh SURFACE --faces N` (N = {args.faces.replace(',', ', ')}) with the default options, timed around the",

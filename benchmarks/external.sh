@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Remesh quality on anatomical meshes that are not in the repository (FreeSurfer's fsaverage5 surfaces,
-# pymeshlab's sample bone): builds capmesh, installs pymeshlab (benchmarks/variants.py's bars are shared)
-# into benchmarks/.venv, downloads nilearn's wheel for its bundled surfaces, runs benchmarks/external.py
+# the Conte69 32k surfaces, pymeshlab's sample bone): builds capmesh, installs pymeshlab (benchmarks/variants.py's bars are shared)
+# into benchmarks/.venv, downloads nilearn's and BrainSpace's wheels for their bundled surfaces, runs benchmarks/external.py
 # (arguments passed on, e.g. --faces 5000). Writes benchmarks/results/external.{md,json}.
 set -euo pipefail
 export LC_ALL=C
