@@ -79,7 +79,7 @@ const GOOD_MEAN_ANGLE_DEG: f64 = 48.0;
 
 /// [`GOOD_MEAN_ANGLE_DEG`] of a sized remesh (`--sizing curvature`), whose faces are
 /// measured by the surface they cover (`shape::covered`): the shared meshes' sized remeshes
-/// come to 46.8-51.5 degrees, and at the uniform bar the other starts and puncture end,
+/// come to 46.4-51.5 degrees, and at the uniform bar the other starts and puncture end,
 /// tried on 8 of 11, took 2-6 times as long for the same figures.
 const SIZED_MEAN_ANGLE_DEG: f64 = 46.0;
 

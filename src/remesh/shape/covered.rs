@@ -10,6 +10,7 @@
 //! covers: equal chord areas then leave the folds with too few vertices, equal covered areas
 //! keep the pull-back's share of vertices in them.
 
+use super::global_area::ln_area_gradient;
 use super::state::Shaping;
 use crate::mesh::geometry::{signed_area_2d, triangle_area};
 
@@ -62,8 +63,7 @@ impl Covered {
         if !(s != 0.0 && area > 0.0) {
             return None;
         }
-        // d s / d q = ((a_y - b_y), (b_x - a_x)) / 2; d ln|s| = d s / s.
-        Some((area.ln(), [0.5 * (a[1] - b[1]) / s, 0.5 * (b[0] - a[0]) / s]))
+        Some((area.ln(), ln_area_gradient([q, a, b], s)[0]))
     }
 }
 

@@ -179,7 +179,7 @@ pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target:
 
 /// The gradient of `ln |signed area|` of the planar triangle `p` (signed area `planar`) with
 /// respect to each corner: `(y_{k+1} - y_{k+2}, x_{k+2} - x_{k+1}) / (2 area)`.
-fn ln_area_gradient(p: [[f64; 2]; 3], planar: f64) -> [[f64; 2]; 3] {
+pub(crate) fn ln_area_gradient(p: [[f64; 2]; 3], planar: f64) -> [[f64; 2]; 3] {
     std::array::from_fn(|k| {
         let (a, b) = (p[(k + 1) % 3], p[(k + 2) % 3]);
         [0.5 * (a[1] - b[1]) / planar, 0.5 * (b[0] - a[0]) / planar]

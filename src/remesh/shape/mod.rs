@@ -213,8 +213,8 @@ pub struct ShapeReport {
 /// The factor on [`ShapeOptions::shape_weight`] when the faces are measured by the surface
 /// they cover (a sized remesh): covered areas and chord shapes pull apart where the remesh
 /// bridges a fold, and at the uniform weight the sized remeshes' mean smallest angle fell to
-/// 45.8-46.8 degrees on the shared meshes; at ten times it is 47-48.5 with the same surface
-/// distances (docs/method.md section 19).
+/// 45.8-46.8 degrees on six shared meshes; at ten times it is 46.8-48.5 there with the same
+/// surface distances (docs/method.md section 19).
 const COVERED_SHAPE_FACTOR: f64 = 10.0;
 
 /// The edge length of equilateral faces of `mesh`'s mean area.
