@@ -7,8 +7,10 @@
 //! `--sizing curvature=S` blends the two: density `1 + S k L`, with `L` the uniform remesh's
 //! edge length (so `k L` is the curvature at the remesh's scale), normalised to mean 1 over
 //! the surface's area so that the face count stays what was asked. The curvature is the
-//! cotangent Laplacian's mean curvature `|Delta x| / 2` (Meyer et al. 2003, barycentric
-//! areas), smoothed over the remesh's scale by averaging with the one-ring.
+//! root mean square of the principal curvatures, `sqrt(2 H^2 - K)`, with the cotangent
+//! Laplacian's mean curvature `H = |Delta x| / 2` and the angle defect's Gaussian curvature
+//! `K` (Meyer et al. 2003, barycentric areas), smoothed over the remesh's scale by averaging
+//! with the one-ring: a saddle, where `H` vanishes, is as curved as a sphere of its radii.
 
 use crate::linalg::laplacian::cotangent_weights;
 use crate::mesh::geometry::{norm, sub, vertex_areas};
@@ -107,6 +109,30 @@ pub(crate) fn mean_curvature(mesh: &TriMesh) -> Vec<f64> {
     h.iter().map(|&x| if x.is_finite() { x } else { 0.0 }).collect()
 }
 
+/// Each vertex's root-mean-square principal curvature `sqrt((k1^2 + k2^2) / 2) =
+/// sqrt(2 H^2 - K)`: the mean curvature `H` of [`mean_curvature`], the Gaussian curvature `K`
+/// by the angle defect over the barycentric area (0 on the boundary).
+pub(crate) fn rms_curvature(mesh: &TriMesh) -> Vec<f64> {
+    let h = mean_curvature(mesh);
+    let area = vertex_areas(&mesh.vertices, &mesh.faces);
+    let boundary = is_boundary_vertex(mesh);
+    let mut angle = vec![0.0f64; mesh.n_vertices()];
+    for f in &mesh.faces {
+        for k in 0..3 {
+            let (a, b, c) = (mesh.vertices[f[k] as usize], mesh.vertices[f[(k + 1) % 3] as usize], mesh.vertices[f[(k + 2) % 3] as usize]);
+            let (u, w) = (sub(b, a), sub(c, a));
+            let cross = crate::mesh::geometry::cross(u, w);
+            angle[f[k] as usize] += norm(cross).atan2(crate::mesh::geometry::dot(u, w));
+        }
+    }
+    (0..mesh.n_vertices())
+        .map(|v| {
+            let gauss = if boundary[v] || !(area[v] > 0.0) { 0.0 } else { (2.0 * std::f64::consts::PI - angle[v]) / area[v] };
+            (2.0 * h[v] * h[v] - gauss).max(0.0).sqrt()
+        })
+        .collect()
+}
+
 /// The relative vertex density of `sizing` at each input vertex (mean 1 over the surface's
 /// area), for a remesh of `faces` faces; `None` for [`Sizing::Uniform`].
 pub(crate) fn vertex_density(mesh: &TriMesh, sizing: Sizing, faces: usize) -> Option<Vec<f64>> {
@@ -126,7 +152,7 @@ pub(crate) fn vertex_density(mesh: &TriMesh, sizing: Sizing, faces: usize) -> Op
     // Curvature above 1 / (MIN_RADIUS L) is noise or a degenerate face at the remesh's
     // scale (zero-area faces give unbounded cotangents).
     let k_max = 1.0 / (MIN_RADIUS * remesh_edge);
-    let mut k: Vec<f64> = mean_curvature(mesh).into_iter().map(|x| x.min(k_max)).collect();
+    let mut k: Vec<f64> = rms_curvature(mesh).into_iter().map(|x| x.min(k_max)).collect();
     for _ in 0..passes {
         k = (0..n)
             .map(|v| {
@@ -152,6 +178,33 @@ mod tests {
     use super::*;
     use crate::mesh::shapes::icosphere;
 
+    /// At the centre of the saddle `z = (x^2 - y^2) / 2` the principal curvatures are 1 and
+    /// -1: the mean curvature vanishes, the root-mean-square curvature is 1.
+    #[test]
+    fn a_saddle_is_curved_though_its_mean_curvature_vanishes() {
+        let (k, h) = (20usize, 0.01);
+        let mut vertices = Vec::new();
+        for j in 0..=k {
+            for i in 0..=k {
+                let (x, y) = ((i as f64 - k as f64 / 2.0) * h, (j as f64 - k as f64 / 2.0) * h);
+                vertices.push([x, y, 0.5 * (x * x - y * y)]);
+            }
+        }
+        let at = |i: usize, j: usize| (j * (k + 1) + i) as u32;
+        let mut faces = Vec::new();
+        for j in 0..k {
+            for i in 0..k {
+                faces.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                faces.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let mesh = TriMesh { vertices, faces };
+        let centre = at(k / 2, k / 2) as usize;
+        let (mean, rms) = (mean_curvature(&mesh)[centre], rms_curvature(&mesh)[centre]);
+        assert!(mean < 0.01, "mean curvature {mean}");
+        assert!((rms - 1.0).abs() < 0.02, "rms curvature {rms}");
+    }
+
     /// On a sphere of radius R the mean curvature is 1/R everywhere (to discretisation error),
     /// so the curvature density is uniform (to 1% after smoothing).
     #[test]
@@ -167,6 +220,10 @@ mod tests {
         }
         let mean = h.iter().sum::<f64>() / h.len() as f64;
         assert!((mean - 1.0 / 3.0).abs() < 0.005 / 3.0, "{mean}");
+        // Umbilic: the root-mean-square curvature is the mean curvature.
+        let rms = rms_curvature(&mesh);
+        let mean_rms = rms.iter().sum::<f64>() / rms.len() as f64;
+        assert!((mean_rms - 1.0 / 3.0).abs() < 0.02 / 3.0, "{mean_rms}");
         let rho = vertex_density(&mesh, Sizing::Curvature { strength: 2.0 }, 500).unwrap();
         for &r in &rho {
             assert!((r - 1.0).abs() < 0.01, "{r}");
