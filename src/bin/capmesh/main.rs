@@ -92,89 +92,7 @@ enum Command {
     /// Remesh a surface through its adaptive cap: a uniform cap mesh of about N faces
     /// (default) or a latitude/longitude mesh, pulled back by the inverse map. Closed
     /// surfaces come back closed (the cap's flat bottom goes onto the punctured quad).
-    Remesh {
-        /// Input mesh.
-        input: PathBuf,
-        /// Output mesh.
-        #[arg(short, long)]
-        output: PathBuf,
-        /// Carry a per-vertex data file (GIFTI .shape/.func/.label.gii, FreeSurfer curv), or a
-        /// vertex property of a PLY input by name (quality, red, ...), to the remesh
-        /// (repeatable): PLY vertex properties, or .gii files beside a GIFTI output.
-        #[arg(long, value_name = "PATH|NAME")]
-        attribute: Vec<PathBuf>,
-        /// Target face count of the uniform cap mesh.
-        #[arg(long, default_value_t = 5000, conflicts_with = "lat_long")]
-        faces: usize,
-        /// Use a latitude/longitude mesh instead.
-        #[arg(long)]
-        lat_long: bool,
-        /// Latitude rings (with --lat-long).
-        #[arg(long, default_value_t = 40, requires = "lat_long")]
-        rings: usize,
-        /// Longitude sectors (with --lat-long).
-        #[arg(long, default_value_t = 64, requires = "lat_long")]
-        sectors: usize,
-        /// Write a JSON report here.
-        #[arg(long)]
-        report: Option<PathBuf>,
-        /// Sweeps of the area equalization of the pulled-back mesh with --optimize area (0: the
-        /// paper's plain pull-back). With shape+area the shape stage's polish equalizes the
-        /// areas itself and no sweeps run after it.
-        #[arg(long, default_value_t = capmesh::remesh::DEFAULT_AREA_EQUALIZATION)]
-        area_equalization: usize,
-        /// What is optimised after the pull-back: shape+area (isotropic triangles of
-        /// near-equal area, the default), area (the cap grid's connectivity, areas equalized)
-        /// or none (the paper's plain pull-back). The --lat-long grid keeps its grid lines:
-        /// area only.
-        #[arg(long, default_value = "shape+area")]
-        optimize: capmesh::remesh::Optimize,
-        /// Relaxation iterations of the shape stage (edge flips and tangential relaxation on
-        /// the surface).
-        #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().relax_iterations)]
-        relax_iterations: usize,
-        /// Polish iterations of the shape stage (joint area and shape steps).
-        #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().polish_iterations)]
-        polish_iterations: usize,
-        /// Global area steps of the polish: Gauss-Newton steps of the area term over all
-        /// vertices at once (one every 5 polish iterations from the first; 0: none), which
-        /// remove the smooth part of the area error the per-vertex steps spread slowly.
-        #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().area_steps)]
-        area_steps: usize,
-        /// Weight of the shape term against the area term in the polish (larger: better
-        /// angles, less equal areas).
-        #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().shape_weight)]
-        shape_weight: f64,
-        /// Keep the pulled-back vertices' count and the grid's rows: no edge splits and
-        /// collapses in the shape stage (they are on by default and give better angles).
-        #[arg(long)]
-        no_resample: bool,
-        /// Put vertices on the input's creases (edges bent by more than 60 degrees, in chains
-        /// of at least 3 edge lengths) and join them by edges: a lower surface distance on
-        /// surfaces with sharp edges, worse angles on staircased segmentations. Off by default.
-        #[arg(long)]
-        keep_creases: bool,
-        /// Of an input in several pieces, remesh the largest whatever the others hold (by
-        /// default only specks of at most 1% of the area are dropped, larger pieces refused).
-        #[arg(long)]
-        largest_piece: bool,
-        /// Vertex placement: fitted (the default: moved along their normals so that the faces
-        /// fit the input in the least-squares sense, a lower mean distance to it; the vertices
-        /// leave the surface by a fraction of a face's sagitta) or on-surface (on the input,
-        /// the faces its chords; with --optimize none, the paper's plain pull-back).
-        #[arg(long, default_value = "fitted")]
-        placement: capmesh::Placement,
-        /// Face sizing: uniform (equal areas, the default) or curvature[=S] (smaller faces
-        /// where the surface is curved, density 1 + S k L at the same face count; S = 3; each
-        /// face's area is the surface it covers, so folds finer than the faces keep vertices).
-        #[arg(long, default_value = "uniform")]
-        sizing: capmesh::Sizing,
-        /// Write figures (PNG, SVG) and an index.md linking them into this directory.
-        #[arg(long, value_name = "DIR")]
-        figures: Option<PathBuf>,
-        #[command(flatten)]
-        map: map_args::MapArgs,
-    },
+    Remesh(remesh_cmd::RemeshArgs),
     /// Adaptive harmonics representation: parameterize onto the adaptive cap, fit every order up
     /// to N by least squares, write the order-N reconstruction (the input's connectivity), the
     /// coefficients and the reconstruction error of each order.
@@ -267,7 +185,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     // Commands that write files stop cleanly on SIGINT and SIGTERM; `check` and `metrics`
     // keep the default (they write nothing).
-    if matches!(cli.command, Command::Param { .. } | Command::Remesh { .. } | Command::Harmonics { .. } | Command::Shape { .. }) {
+    if matches!(cli.command, Command::Param { .. } | Command::Remesh(_) | Command::Harmonics { .. } | Command::Shape { .. }) {
         if let Err(e) = interrupt::install() {
             eprintln!("error: {e}");
             return ExitCode::FAILURE;
@@ -334,32 +252,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let basis = basis.kind()?;
             shape_cmd::run(shape_cmd::ShapeArgs { inputs, csv, jobs, domain, resume, retry_failed, allow_poor_map, basis, groups, quiet: cli.quiet })
         }
-        Command::Remesh { input, output, attribute, faces, lat_long, rings, sectors, report, area_equalization, optimize, relax_iterations, polish_iterations, area_steps, shape_weight, no_resample, keep_creases, largest_piece, placement, sizing, figures, map } => {
-            remesh_cmd::run(remesh_cmd::RemeshArgs {
-                input,
-                output,
-                attribute,
-                faces,
-                lat_long,
-                rings,
-                sectors,
-                report,
-                area_equalization,
-                optimize,
-                relax_iterations,
-                polish_iterations,
-                area_steps,
-                shape_weight,
-                no_resample,
-                keep_creases,
-                largest_piece,
-                placement,
-                sizing,
-                figures,
-                map,
-                quiet: cli.quiet,
-            })
-        }
+        Command::Remesh(args) => remesh_cmd::run(remesh_cmd::RemeshArgs { quiet: cli.quiet, ..args }),
         Command::Metrics { original, remeshed, json } => {
             let (a, b) = (read(&original)?, read(&remeshed)?);
             let q = capmesh::metrics::remesh_metrics(&a, &b);
