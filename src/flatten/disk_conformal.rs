@@ -16,7 +16,7 @@ use super::harmonic::{count_flipped, harmonic_extension, HarmonicWeights};
 use super::mobius::center_by_mobius;
 use super::FlattenError;
 use crate::linalg::{cotangent_weights, SpdSolver};
-use crate::mesh::geometry::{norm, sub, triangle_angles, vertex_areas};
+use crate::mesh::geometry::{angle_sums, norm, sub, vertex_areas};
 use std::f64::consts::PI;
 
 /// Options of the disk conformal map. Build them from [`DiskConformalOptions::default`] with
@@ -87,13 +87,7 @@ pub fn disk_conformal_map(
         on_boundary[b as usize] = true;
     }
     // Angle defects.
-    let mut angle_sum = vec![0.0; n];
-    for f in faces {
-        let ang = triangle_angles(vertices[f[0] as usize], vertices[f[1] as usize], vertices[f[2] as usize]);
-        for k in 0..3 {
-            angle_sum[f[k] as usize] += ang[k];
-        }
-    }
+    let angle_sum = angle_sums(vertices, faces);
     let omega: Vec<f64> = (0..n)
         .map(|v| if on_boundary[v] { PI - angle_sum[v] } else { 2.0 * PI - angle_sum[v] })
         .collect();

@@ -89,6 +89,19 @@ pub fn face_areas(vertices: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<f64> {
         .collect()
 }
 
+/// The sum of the corner angles ([`triangle_angles`]) of each vertex's faces: `2 pi` minus it
+/// is an interior vertex's angle defect (its Gaussian curvature times its area).
+pub fn angle_sums(vertices: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<f64> {
+    let mut sum = vec![0.0; vertices.len()];
+    for f in faces {
+        let ang = triangle_angles(vertices[f[0] as usize], vertices[f[1] as usize], vertices[f[2] as usize]);
+        for k in 0..3 {
+            sum[f[k] as usize] += ang[k];
+        }
+    }
+    sum
+}
+
 /// Vertex areas: one third of the area of the incident faces (the paper's `A_v`, Sec. 3.1.2).
 pub fn vertex_areas(vertices: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<f64> {
     let mut out = vec![0.0; vertices.len()];

@@ -13,7 +13,7 @@
 //! with the one-ring: a saddle, where `H` vanishes, is as curved as a sphere of its radii.
 
 use crate::linalg::laplacian::cotangent_weights;
-use crate::mesh::geometry::{norm, sub, vertex_areas};
+use crate::mesh::geometry::{angle_sums, norm, sub, vertex_areas};
 use crate::mesh::topology::{is_boundary_vertex, vertex_neighbors};
 use crate::mesh::TriMesh;
 
@@ -116,15 +116,7 @@ pub(crate) fn rms_curvature(mesh: &TriMesh) -> Vec<f64> {
     let h = mean_curvature(mesh);
     let area = vertex_areas(&mesh.vertices, &mesh.faces);
     let boundary = is_boundary_vertex(mesh);
-    let mut angle = vec![0.0f64; mesh.n_vertices()];
-    for f in &mesh.faces {
-        for k in 0..3 {
-            let (a, b, c) = (mesh.vertices[f[k] as usize], mesh.vertices[f[(k + 1) % 3] as usize], mesh.vertices[f[(k + 2) % 3] as usize]);
-            let (u, w) = (sub(b, a), sub(c, a));
-            let cross = crate::mesh::geometry::cross(u, w);
-            angle[f[k] as usize] += norm(cross).atan2(crate::mesh::geometry::dot(u, w));
-        }
-    }
+    let angle = angle_sums(&mesh.vertices, &mesh.faces);
     (0..mesh.n_vertices())
         .map(|v| {
             let gauss = if boundary[v] || !(area[v] > 0.0) { 0.0 } else { (2.0 * std::f64::consts::PI - angle[v]) / area[v] };
