@@ -9,10 +9,11 @@ use capmesh::mesh::{validate, SurfaceKind, TriMesh};
 use capmesh::progress::NoProgress;
 use capmesh::metrics::angles::angle_quality;
 use capmesh::remesh::{remesh, CapGrid, Optimize, Placement, RemeshOptions};
-use std::path::Path;
+
+mod common;
 
 fn load(name: &str) -> TriMesh {
-    read_mesh(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)).unwrap()
+    read_mesh(&common::data(name)).unwrap()
 }
 
 fn run(mesh: &TriMesh, optimize: Optimize) -> (TriMesh, capmesh::remesh::RemeshReport) {

@@ -8,10 +8,11 @@ use capmesh::metrics::angles::angle_quality;
 use capmesh::mesh::TriMesh;
 use capmesh::progress::NoProgress;
 use capmesh::remesh::{remesh, CapGrid, Placement, RemeshOptions};
-use std::path::Path;
+
+mod common;
 
 fn load(name: &str) -> TriMesh {
-    read_mesh(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)).unwrap()
+    read_mesh(&common::data(name)).unwrap()
 }
 
 /// `--sizing curvature` on the face (a nose, lips and eyes on a gently curved sheet): at the
