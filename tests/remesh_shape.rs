@@ -149,12 +149,13 @@ fn meg_helmet() {
 
 /// The grid's lift is stretched: the shape stage starts from the isotropic sample. Its
 /// punctured quad is 3.5 remesh faces: merged into one vertex (`MERGE_QUAD_FACES`), not left
-/// as about 19 faces a sixth of the mean area (d_face_rel 0.0323 then, 0.0288 merged).
+/// as about 19 faces a sixth of the mean area (d_face_rel 0.0323 then, 0.0288 merged, 0.0314
+/// since the relaxation's angle flips keep the valence flips: within issue 26's 0.035).
 #[test]
 fn closed_bunny() {
     let rep = check("closed_bunny_npm.obj.gz");
     assert_eq!(rep.shape.start, capmesh::remesh::shape::Start::Sample);
-    assert!(rep.quality.d_face_relative <= 0.031, "d_face_rel {:.4}", rep.quality.d_face_relative);
+    assert!(rep.quality.d_face_relative <= 0.035, "d_face_rel {:.4}", rep.quality.d_face_relative);
 }
 
 /// The lung lobe's thinnest face (22.5 degrees, three free corners of valence 5-8 that the
@@ -194,11 +195,11 @@ fn closed_bird_skull() {
 
 /// A decimated copy of the lung lobe (graded triangles): its bottom fan's crowded ring left a
 /// vertex of valence 4 pressed against a spoke (a 7.4-degree face) until the removal of
-/// low-valence vertices at slivers (`remesh::shape::sliver`).
+/// low-valence vertices at slivers (`remesh::shape::sliver`, unit-tested there); since the
+/// relaxation's angle flips keep the valence flips, no such vertex is left (25.1 degrees).
 #[test]
 fn closed_lung_lobe_decimated() {
     let rep = check("closed_lung_rml_chaste_decimated.obj.gz");
-    assert!(rep.shape.sliver_removals > 0, "{:?}", rep.shape);
     assert!(rep.quality.min_angle_deg >= 15.0, "smallest angle {:.1}", rep.quality.min_angle_deg);
 }
 

@@ -40,11 +40,15 @@ pub(crate) fn flip_to_max_min_angle(mesh: &mut Shaping, crease: f64) -> usize {
 /// flip brings the valences of its four vertices closer to the regular ones (6 inside, 4 on
 /// the boundary) without making the pair's smallest angle fall below [`VALENCE_FLOOR_DEG`] or
 /// below what it was (as in isotropic remeshing, Botsch and Kobbelt 2004; the sum of squared
-/// valence excesses falls with every flip, so a pass cannot cycle); then the flips of
-/// [`flip_to_max_min_angle`]. Returns the number of flips.
+/// valence excesses falls with every flip, so a pass cannot cycle), then the flips of
+/// [`flip_to_max_min_angle`] that do not move the valences away from the regular ones unless
+/// the pair's smallest angle is below the floor (otherwise they undid about as many valence
+/// flips in every relaxation iteration: docs/method.md section 18, "Flips that keep the
+/// valences"); without `valence`, the flips of [`flip_to_max_min_angle`]. Returns the number
+/// of flips.
 pub(crate) fn flip_valence_then_angle(flipper: &mut Flipper, mesh: &mut Shaping, valence: bool) -> usize {
     let by_valence = if valence { flipper.run(mesh, Criterion::Valence) } else { 0 };
-    by_valence + flipper.run(mesh, Criterion::MinAngle)
+    by_valence + flipper.run(mesh, if valence { Criterion::MinAngleKeepingValence } else { Criterion::MinAngle })
 }
 
 /// Smallest angle (degrees) a valence flip may leave in its pair (unless it was smaller).
@@ -87,6 +91,9 @@ struct Ahead {
 #[derive(Clone, Copy, PartialEq)]
 enum Criterion {
     MinAngle,
+    /// A larger smallest angle without a larger valence excess, unless the pair's smallest
+    /// angle is below [`VALENCE_FLOOR_DEG`].
+    MinAngleKeepingValence,
     Valence,
 }
 
@@ -263,6 +270,16 @@ impl Flipper {
         pair_of(mesh, a, b, *self.edges.get(&(a, b))?)
     }
 
+    /// The sum of the squared valence excesses of the four vertices of edge `(a, b)` and its
+    /// opposite corners `c`, `d`, before and after the edge's flip.
+    fn valence_excess(&self, [a, b, c, d]: [u32; 4]) -> (i32, i32) {
+        let dev = |v: u32, change: i32| {
+            let e = self.valence[v as usize] + change - self.regular[v as usize];
+            e * e
+        };
+        (dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0), dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1))
+    }
+
     /// Whether flipping the edge `(a, b)` of the pair `[t1, t2]` with opposite corners `c`,
     /// `d` improves what `criterion` asks for (the edge's existence and planarity checked
     /// by the caller).
@@ -275,13 +292,12 @@ impl Flipper {
         };
         match criterion {
             Criterion::MinAngle => improves(mesh, [a, b, c, d], old, self.cos_crease, None, fan),
+            Criterion::MinAngleKeepingValence => {
+                let (before, after) = self.valence_excess([a, b, c, d]);
+                (after <= before || old < VALENCE_FLOOR_DEG.to_radians().tan()) && improves(mesh, [a, b, c, d], old, self.cos_crease, None, fan)
+            }
             Criterion::Valence => {
-                let dev = |v: u32, change: i32| {
-                    let e = self.valence[v as usize] + change - self.regular[v as usize];
-                    e * e
-                };
-                let before = dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0);
-                let after = dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1);
+                let (before, after) = self.valence_excess([a, b, c, d]);
                 after < before && improves(mesh, [a, b, c, d], old, self.cos_crease, Some(VALENCE_FLOOR_DEG.to_radians().tan()), fan)
             }
         }

@@ -18,7 +18,7 @@ use super::state::{ring_least, smallest_angle_tan, Incidence, Role, Shaping, Sur
 use crate::linalg::SpdSolver;
 use crate::mesh::geometry::{signed_area_2d, triangle_area};
 use crate::mesh::topology::within_rings;
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use super::blocks::BlockSystem;
 
 /// Polish iterations between two global steps ([`super::ShapeOptions::area_steps`] of them
 /// from the polish's first iteration). Every 5 for the first 30 lowered the areas' spread more
@@ -56,50 +56,13 @@ const DAMPING: f64 = 1e-6;
 /// `t`'s target area; `alpha` weighs the smoothness term. `solver` keeps its analysis for
 /// the next step while the flips leave the vertices' neighbours as they are.
 pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target: &dyn Fn(usize) -> f64, alpha: f64, solver: &mut SpdSolver) -> Option<Vec<[f64; 2]>> {
-    let n = mesh.plane.len();
     // Vertices within BOTTOM_RINGS edges of a closed surface's merged bottom (no planar
     // point) stay: the plane is most distorted there and the spoke faces have no planar area.
     let bottom: Vec<bool> = mesh.has_plane.iter().map(|&p| !p).collect();
     let near = if bottom.contains(&true) { within_rings(&bottom, &mesh.faces, BOTTOM_RINGS) } else { bottom };
-    let mut index = vec![u32::MAX; n];
-    let mut free = Vec::new();
-    for v in 0..n {
-        if mesh.role[v] == Role::Free && !near[v] && !incidence.of(v).is_empty() {
-            index[v] = free.len() as u32;
-            free.push(v);
-        }
-    }
-    if free.is_empty() {
-        return None;
-    }
-    // Each free vertex's free neighbours and itself, sorted: the block pattern.
-    let mut start = Vec::with_capacity(free.len() + 1);
-    let mut nb: Vec<u32> = Vec::with_capacity(free.len() * 7);
-    let mut row: Vec<u32> = Vec::new();
-    start.push(0);
-    for &v in &free {
-        row.clear();
-        row.extend(incidence.of(v).iter().flat_map(|&t| mesh.faces[t as usize]).map(|u| index[u as usize]).filter(|&i| i != u32::MAX));
-        row.sort_unstable();
-        row.dedup();
-        nb.extend_from_slice(&row);
-        start.push(nb.len());
-    }
-    let m = free.len();
-    // Column 2i + a holds rows 2j + b for j in nb(i): 4 entries a block, 2 per column.
-    let col_ptr: Vec<usize> = (0..=2 * m).map(|c| if c == 2 * m { 4 * start[m] } else { 4 * start[c / 2] + (c % 2) * 2 * (start[c / 2 + 1] - start[c / 2]) }).collect();
-    let row_idx: Vec<usize> = (0..2 * m).flat_map(|c| nb[start[c / 2]..start[c / 2 + 1]].iter().flat_map(|&j| [2 * j as usize, 2 * j as usize + 1])).collect();
-    let mut values = vec![0.0f64; row_idx.len()];
-    let slot = |i: u32, j: u32| -> usize { start[i as usize] + nb[start[i as usize]..start[i as usize + 1]].binary_search(&j).unwrap_or(0) };
-    // Adds `w` to the 2 x 2 block (i, j) entry (a, b), in column 2i + a.
-    let add = |values: &mut [f64], i: u32, a: usize, j: u32, b: usize, w: f64| {
-        let k = slot(i, j);
-        let col = 2 * i as usize + a;
-        values[col_ptr[col] + 2 * (k - start[i as usize]) + b] += w;
-    };
-    let mut rhs = vec![0.0f64; 2 * m];
+    let mut system = BlockSystem::new(mesh, incidence, |v| mesh.role[v] == Role::Free && !near[v])?;
     for (t, f) in mesh.faces.iter().enumerate() {
-        if !f.iter().all(|&u| mesh.has_plane[u as usize]) || f.iter().all(|&u| index[u as usize] == u32::MAX) {
+        if !f.iter().all(|&u| mesh.has_plane[u as usize]) || f.iter().all(|&u| system.unknown(u) == u32::MAX) {
             continue;
         }
         let p = f.map(|u| mesh.plane[u as usize]);
@@ -111,13 +74,13 @@ pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target:
         }
         let r = ln_target(t) - surface.ln();
         let grad = ln_area_gradient(p, planar);
-        let ids = f.map(|u| index[u as usize]);
+        let ids = f.map(|u| system.unknown(u));
         for i in 0..3 {
             if ids[i] == u32::MAX {
                 continue;
             }
             for a in 0..2 {
-                rhs[2 * ids[i] as usize + a] += grad[i][a] * r;
+                system.add_rhs(ids[i], a, grad[i][a] * r);
             }
             for j in 0..3 {
                 if ids[j] == u32::MAX {
@@ -125,7 +88,7 @@ pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target:
                 }
                 for a in 0..2 {
                     for b in 0..2 {
-                        add(&mut values, ids[i], a, ids[j], b, grad[i][a] * grad[j][b]);
+                        system.add(ids[i], a, ids[j], b, grad[i][a] * grad[j][b]);
                     }
                 }
             }
@@ -141,40 +104,19 @@ pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target:
             let w = 0.5 * alpha / l2;
             for c in 0..2 {
                 if ia != u32::MAX {
-                    add(&mut values, ia, c, ia, c, w);
+                    system.add(ia, c, ia, c, w);
                 }
                 if ib != u32::MAX {
-                    add(&mut values, ib, c, ib, c, w);
+                    system.add(ib, c, ib, c, w);
                 }
                 if ia != u32::MAX && ib != u32::MAX {
-                    add(&mut values, ia, c, ib, c, -w);
-                    add(&mut values, ib, c, ia, c, -w);
+                    system.add(ia, c, ib, c, -w);
+                    system.add(ib, c, ia, c, -w);
                 }
             }
         }
     }
-    for i in 0..m as u32 {
-        for a in 0..2 {
-            let k = slot(i, i);
-            let col = 2 * i as usize + a;
-            let e = col_ptr[col] + 2 * (k - start[i as usize]) + a;
-            values[e] += DAMPING * values[e] + 1e-300;
-        }
-    }
-    let symbolic = SymbolicSparseColMat::new_checked(2 * m, 2 * m, col_ptr, None, row_idx);
-    let matrix = SparseColMat::new(symbolic, values);
-    solver.factor(&matrix, "global area step").ok()?;
-    let mut cols = vec![rhs];
-    solver.solve_in_place(&mut cols, "global area step").ok()?;
-    let u = &cols[0];
-    if !u.iter().all(|x| x.is_finite()) {
-        return None;
-    }
-    let mut out = vec![[0.0, 0.0]; n];
-    for (i, &v) in free.iter().enumerate() {
-        out[v] = [u[2 * i], u[2 * i + 1]];
-    }
-    Some(out)
+    system.solve(DAMPING, solver, "global area step")
 }
 
 /// The gradient of `ln |signed area|` of the planar triangle `p` (signed area `planar`) with

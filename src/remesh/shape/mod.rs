@@ -31,6 +31,7 @@ pub(crate) mod boundary;
 pub(crate) mod covered;
 pub(crate) mod crease;
 pub(crate) mod flips;
+pub(crate) mod blocks;
 pub(crate) mod global_area;
 pub(crate) mod polish;
 pub(crate) mod resample;
