@@ -342,3 +342,41 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
     let slivers_at_rim = if shaped && closed { shape::uncross::slivers_on_fixed_edges(&positions, &faces, &has_plane, &fixed) } else { 0 };
     Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds, mean_min_angle_deg, d_face_relative, slivers_at_rim, fixed, fit: super::FitReport::default() })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A remesh's figures as the retry decisions read them.
+    fn made(mean_angle: f64, d_face: f64) -> FromCap {
+        FromCap {
+            faces: Vec::new(),
+            planar: Vec::new(),
+            positions: Vec::new(),
+            has_plane: Vec::new(),
+            shape: Default::default(),
+            equalization: Default::default(),
+            pullback_seconds: 0.0,
+            shape_seconds: 0.0,
+            equalize_seconds: 0.0,
+            mean_min_angle_deg: mean_angle,
+            d_face_relative: d_face,
+            slivers_at_rim: 0,
+            fixed: Vec::new(),
+            fit: Default::default(),
+        }
+    }
+
+    /// The other puncture end is tried for a uniform remesh below the angle bar or with its
+    /// areas spread beyond `RETRY_AREA_SPREAD` (not for a sized one's spread, which is its
+    /// purpose), and of two ends the even one is preferred before the angles.
+    #[test]
+    fn the_other_end_is_tried_for_angles_or_spread_areas() {
+        assert!(!end_worth_retrying(&made(48.5, 0.03), true));
+        assert!(end_worth_retrying(&made(47.5, 0.03), true));
+        assert!(end_worth_retrying(&made(48.5, 0.049), true));
+        assert!(!end_worth_retrying(&made(48.5, 0.2), false));
+        assert!(end_rank(&made(48.2, 0.03), true) < end_rank(&made(49.0, 0.049), true));
+        assert!(end_rank(&made(49.0, 0.03), true) < end_rank(&made(48.2, 0.03), true));
+    }
+}

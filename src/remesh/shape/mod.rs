@@ -9,7 +9,8 @@
 //!    triangles (`flips`), then tangential relaxation towards a centroidal tessellation on
 //!    the surface, made in the map's plane and lifted through the inverse map (`smooth`);
 //!    boundary vertices of an open surface slide along the input's boundary, its corners
-//!    kept (`boundary`); optionally edge splits and collapses (`resample`);
+//!    kept (`boundary`); optionally edge splits and collapses (`resample`), by length in the
+//!    first half and by the regions' area error in the second (`rebalance`);
 //! 2. polish iterations: angle flips and a joint area-and-shape Gauss-Newton step (`polish`),
 //!    the first few replaced by a global Gauss-Newton step of the area term (`global_area`);
 //! 3. the last flips, removals of vertices at slivers (`sliver`) and moves of the vertices of
@@ -34,6 +35,7 @@ pub(crate) mod flips;
 pub(crate) mod blocks;
 pub(crate) mod global_area;
 pub(crate) mod polish;
+pub(crate) mod rebalance;
 pub(crate) mod resample;
 pub(crate) mod sliver;
 pub(crate) mod smooth;
@@ -65,8 +67,10 @@ pub struct ShapeOptions {
     /// are covered areas, docs/method.md section 19).
     pub area_steps: usize,
     /// Split long and collapse short edges in the first half of the relaxation
-    /// (`resample`), where the map is resolved at the remesh's scale. Default on: it raised
-    /// the mean smallest angle on 10 of the 11 shared meshes (docs/method.md, "Remesh shape").
+    /// (`resample`), where the map is resolved at the remesh's scale, and split and collapse
+    /// by the regions' area error in the second half (`rebalance`). Default on: it raised
+    /// the mean smallest angle on 10 of the 11 shared meshes, and the rebalancing halved the
+    /// hand's `d_face_relative` (docs/method.md, "Remesh shape").
     pub resample: bool,
     /// Weight `mu` of the shape term against the area term in the polish. Default 0.1: with
     /// the polish as the last area step, 0.1 gave both lower d_face_rel and a higher mean
@@ -179,6 +183,12 @@ pub struct ShapeReport {
     pub splits: usize,
     /// Edge collapses over all iterations.
     pub collapses: usize,
+    /// Edge splits of the area rebalancing (`rebalance`) in the second half of the
+    /// relaxation, where the faces of a region are too large (not counted in `splits`).
+    pub rebalance_splits: usize,
+    /// Edge collapses of the area rebalancing, where the faces of a region are too small (not
+    /// counted in `collapses`).
+    pub rebalance_collapses: usize,
     /// Vertices removed at slivers after the last flips and again after the moves for shape
     /// (`sliver`): free ones of valence 3 or 4, and a closed surface's rim vertices merged
     /// along short rim edges.
@@ -345,8 +355,19 @@ pub(crate) fn optimize_shape(
                 flipper = None;
             }
         }
-        let resampled = options.resample && it < lloyd / 2 && target_len > 0.0;
-        if resampled {
+        let mut resampled = options.resample && it < lloyd / 2 && target_len > 0.0;
+        // The second half of the relaxation moves faces from where they are too small to
+        // where they are too large (`rebalance`; uniform remeshes, whose targets are chord
+        // areas).
+        if options.resample && !by_covered && target_len > 0.0 && it >= lloyd / 2 && it < lloyd {
+            let rho = vertex_densities(&mesh, input.lift, input.density);
+            let targets = ln_face_targets(&mesh, &face_densities(&mesh.faces, &rho));
+            let (splits, collapses) = rebalance::rebalance(&mut mesh, input.track, &mut arc, input.lift, &|t| targets[t], resample::SPLIT * target_len * len_factor, &length_factor(&rho));
+            report.rebalance_splits += splits;
+            report.rebalance_collapses += collapses;
+            resampled |= splits + collapses > 0;
+        }
+        if resampled && it < lloyd / 2 {
             // Splits and collapses balance at a slightly different count than asked for:
             // the target length follows the face count back to the pulled-back mesh's.
             len_factor *= (mesh.faces.len() as f64 / faces0 as f64).sqrt();

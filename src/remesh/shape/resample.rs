@@ -83,18 +83,27 @@ fn push_vertex(mesh: &mut Shaping, arc: &mut Vec<f64>, q: [f64; 2], x: [f64; 3],
 /// Split the edges longer than `max_len` times `local(a, b)` (the sizing's length factor at
 /// the edge), longest first, no two in one face per call. Returns the number of splits.
 pub(crate) fn split_long_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &mut Vec<f64>, lift: &SurfaceLift, max_len: f64, local: &dyn Fn(u32, u32) -> f64) -> usize {
+    split_edges(mesh, track, arc, lift, &|a, b, l| (l > max_len * local(a, b)).then_some(-l), usize::MAX)
+}
+
+/// Split at most `limit` of the edges `(a, b)` (length `l`) for which `pick(a, b, l)` gives a
+/// key, smallest key first, no two in one face per call, with the checks of
+/// [`split_long_edges`]. Returns the number of splits.
+pub(crate) fn split_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &mut Vec<f64>, lift: &SurfaceLift, pick: &dyn Fn(u32, u32, f64) -> Option<f64>, limit: usize) -> usize {
     let edges = edge_faces(&mesh.faces);
     let scale = mean_scale(mesh);
     let mut long: Vec<(f64, (u32, u32), [u32; 2])> = edges
         .iter()
         .filter(|(&(a, b), _)| mesh.planar(a) && mesh.planar(b) && resolved(mesh, scale, a, b))
-        .map(|(&(a, b), &t)| (length(mesh, a, b), (a, b), t))
-        .filter(|&(l, (a, b), _)| l > max_len * local(a, b))
+        .filter_map(|(&(a, b), &t)| pick(a, b, length(mesh, a, b)).map(|key| (key, (a, b), t)))
         .collect();
-    long.sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+    long.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
     let mut touched = vec![false; mesh.faces.len()];
     let mut splits = 0;
     for (_, (a, b), [t1, t2]) in long {
+        if splits == limit {
+            break;
+        }
         let interior = t1 != u32::MAX && t2 != u32::MAX;
         if [t1, t2].iter().any(|&t| t != u32::MAX && touched[t as usize]) {
             continue;
@@ -176,13 +185,19 @@ pub(crate) fn split_long_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &
 /// its orientation and side, and no edge becomes longer than `max_len`. Removed vertices
 /// keep their slots with no face (see [`compact`]). Returns the number of collapses.
 pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, lift: &SurfaceLift, min_len: f64, max_len: f64, local: &dyn Fn(u32, u32) -> f64) -> usize {
+    collapse_edges(mesh, incidence, lift, &|a, b, l| (l < min_len * local(a, b)).then_some(l), usize::MAX, max_len, local)
+}
+
+/// Collapse at most `limit` of the interior edges `(a, b)` (length `l`) for which `pick(a, b,
+/// l)` gives a key, smallest key first, with the checks of [`collapse_short_edges`] (`max_len`
+/// and `local` bound the edges a collapse may create). Returns the number of collapses.
+pub(crate) fn collapse_edges(mesh: &mut Shaping, incidence: &Incidence, lift: &SurfaceLift, pick: &dyn Fn(u32, u32, f64) -> Option<f64>, limit: usize, max_len: f64, local: &dyn Fn(u32, u32) -> f64) -> usize {
     let edges = edge_faces(&mesh.faces);
     let scale = mean_scale(mesh);
     let mut short: Vec<(f64, (u32, u32), [u32; 2])> = edges
         .iter()
         .filter(|(&(a, b), t)| t[0] != u32::MAX && t[1] != u32::MAX && mesh.planar(a) && mesh.planar(b) && resolved(mesh, scale, a, b))
-        .map(|(&(a, b), &t)| (length(mesh, a, b), (a, b), t))
-        .filter(|&(l, (a, b), _)| l < min_len * local(a, b))
+        .filter_map(|(&(a, b), &t)| pick(a, b, length(mesh, a, b)).map(|key| (key, (a, b), t)))
         .collect();
     short.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
     let n = mesh.plane.len();
@@ -190,6 +205,9 @@ pub(crate) fn collapse_short_edges(mesh: &mut Shaping, incidence: &Incidence, li
     let mut removed_face = vec![false; mesh.faces.len()];
     let mut collapses = 0;
     for (_, (a, b), [t1, t2]) in short {
+        if collapses == limit {
+            break;
+        }
         if touched[a as usize] || touched[b as usize] || !mesh.planar(a) || !mesh.planar(b) {
             continue;
         }
