@@ -168,33 +168,18 @@ pub(crate) fn move_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift:
 mod tests {
     use super::*;
     use crate::remesh::shape::polish::ln_mean_area;
+    use crate::remesh::shape::state::test_meshes::flat_grid;
 
     /// A flat `k x k` square grid (planar point = surface point), its border fixed and its
     /// interior displaced by a smooth bump `amp * sin(pi x) sin(pi y)` along x: the faces'
     /// areas vary smoothly, the error the global step is for.
     fn bumped_grid(k: usize, amp: f64) -> Shaping {
-        let idx = |i: usize, j: usize| (j * (k + 1) + i) as u32;
-        let mut plane = Vec::new();
-        let mut role = Vec::new();
-        for j in 0..=k {
-            for i in 0..=k {
-                let (x, y) = (i as f64 / k as f64, j as f64 / k as f64);
-                let border = i == 0 || j == 0 || i == k || j == k;
-                let dx = if border { 0.0 } else { amp * (std::f64::consts::PI * x).sin() * (std::f64::consts::PI * y).sin() };
-                plane.push([x + dx, y]);
-                role.push(if border { Role::Fixed } else { Role::Free });
-            }
-        }
-        let mut faces = Vec::new();
-        for j in 0..k {
-            for i in 0..k {
-                faces.push([idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)]);
-                faces.push([idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)]);
-            }
-        }
-        let n = plane.len();
-        let position = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
-        Shaping { faces, plane, position, hint: vec![u32::MAX; n], role, has_plane: vec![true; n], orientation: 1.0 }
+        flat_grid(k, |i, j| {
+            let (x, y) = (i as f64 / k as f64, j as f64 / k as f64);
+            let border = i == 0 || j == 0 || i == k || j == k;
+            let dx = if border { 0.0 } else { amp * (std::f64::consts::PI * x).sin() * (std::f64::consts::PI * y).sin() };
+            ([x + dx, y], if border { Role::Fixed } else { Role::Free })
+        })
     }
 
     /// Sum of squared log errors of the faces' surface areas against the mean.

@@ -27,12 +27,12 @@
 //! and the planar mesh stays an embedding. The area equalization (`super::equalize`) runs
 //! after it.
 
+pub(crate) mod blocks;
 pub(crate) mod bottom;
 pub(crate) mod boundary;
 pub(crate) mod covered;
 pub(crate) mod crease;
 pub(crate) mod flips;
-pub(crate) mod blocks;
 pub(crate) mod global_area;
 pub(crate) mod polish;
 pub(crate) mod rebalance;

@@ -16,7 +16,7 @@ use super::state::{Incidence, Shaping, SurfaceLift};
 use crate::mesh::geometry::{cross, norm, sub};
 
 /// Smoothed area ratios further than this from 1 are rebalanced.
-pub(crate) const TOLERANCE: f64 = 0.1;
+const TOLERANCE: f64 = 0.1;
 
 /// Passes of vertex averaging over the faces (each pass reaches a ring farther).
 const SMOOTHING_PASSES: usize = 3;
@@ -73,6 +73,7 @@ pub(crate) fn rebalance(mesh: &mut Shaping, track: Option<&Track>, arc: &mut Vec
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::remesh::shape::state::test_meshes::flat_grid;
     use crate::remesh::shape::state::Role;
 
     /// A flat `k x k` grid on [0, 1]^2 whose columns right of the middle are `wide` times as
@@ -81,23 +82,7 @@ mod tests {
         let half = k / 2;
         let total = half as f64 + wide * (k - half) as f64;
         let x_of = |i: usize| if i <= half { i as f64 / total } else { (half as f64 + wide * (i - half) as f64) / total };
-        let idx = |i: usize, j: usize| (j * (k + 1) + i) as u32;
-        let mut plane = Vec::new();
-        for j in 0..=k {
-            for i in 0..=k {
-                plane.push([x_of(i), j as f64 / k as f64]);
-            }
-        }
-        let mut faces = Vec::new();
-        for j in 0..k {
-            for i in 0..k {
-                faces.push([idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)]);
-                faces.push([idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)]);
-            }
-        }
-        let n = plane.len();
-        let position = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
-        Shaping { faces, plane, position, hint: vec![u32::MAX; n], role: vec![Role::Free; n], has_plane: vec![true; n], orientation: 1.0 }
+        flat_grid(k, |i, j| ([x_of(i), j as f64 / k as f64], Role::Free))
     }
 
     /// Equal faces have ratio 1 everywhere; with wider columns on the right the smoothed

@@ -272,3 +272,26 @@ mod tests {
         assert_eq!(smallest_angle_tan([0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]), 0.0);
     }
 }
+
+/// Meshes for the shape stage's unit tests.
+#[cfg(test)]
+pub(crate) mod test_meshes {
+    use super::{Role, Shaping};
+
+    /// A flat `k x k` grid of two triangles a cell whose surface points are its planar points:
+    /// vertex `(i, j)` at `point(i, j)`, which also gives its role.
+    pub(crate) fn flat_grid(k: usize, point: impl Fn(usize, usize) -> ([f64; 2], Role)) -> Shaping {
+        let idx = |i: usize, j: usize| (j * (k + 1) + i) as u32;
+        let (plane, role): (Vec<[f64; 2]>, Vec<Role>) = (0..=k).flat_map(|j| (0..=k).map(move |i| (i, j))).map(|(i, j)| point(i, j)).unzip();
+        let mut faces = Vec::new();
+        for j in 0..k {
+            for i in 0..k {
+                faces.push([idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)]);
+                faces.push([idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)]);
+            }
+        }
+        let n = plane.len();
+        let position = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        Shaping { faces, plane, position, hint: vec![u32::MAX; n], role, has_plane: vec![true; n], orientation: 1.0 }
+    }
+}
