@@ -41,6 +41,7 @@ pub mod harmonics;
 pub mod io;
 pub mod linalg;
 pub mod mesh;
+pub(crate) mod named;
 pub mod metrics;
 pub mod omt;
 pub mod param;

@@ -30,28 +30,7 @@ pub enum CapBoundary {
     Mixed,
 }
 
-impl CapBoundary {
-    /// `"neumann"`, `"dirichlet"` or `"mixed"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Neumann => "neumann",
-            Self::Dirichlet => "dirichlet",
-            Self::Mixed => "mixed",
-        }
-    }
-}
-
-impl std::str::FromStr for CapBoundary {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s.to_ascii_lowercase().as_str() {
-            "neumann" => Ok(Self::Neumann),
-            "dirichlet" => Ok(Self::Dirichlet),
-            "mixed" => Ok(Self::Mixed),
-            _ => Err(format!("unknown cap boundary condition '{s}': use neumann, dirichlet or mixed")),
-        }
-    }
-}
+crate::named::named_enum!(CapBoundary, "cap boundary condition", Neumann => "neumann", Dirichlet => "dirichlet", Mixed => "mixed");
 
 /// The harmonic basis of a fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]

@@ -60,28 +60,7 @@ pub enum Optimize {
     None,
 }
 
-impl Optimize {
-    /// The name used by the CLI and the JSON report.
-    pub fn name(self) -> &'static str {
-        match self {
-            Optimize::ShapeAndArea => "shape+area",
-            Optimize::Area => "area",
-            Optimize::None => "none",
-        }
-    }
-}
-
-impl std::str::FromStr for Optimize {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "shape+area" => Ok(Optimize::ShapeAndArea),
-            "area" => Ok(Optimize::Area),
-            "none" => Ok(Optimize::None),
-            _ => Err(format!("unknown optimisation {s:?}: use shape+area (default), area or none")),
-        }
-    }
-}
+crate::named::named_enum!(Optimize, "optimisation", ShapeAndArea => "shape+area", Area => "area", None => "none");
 
 /// Where the remesh's vertices are put once its faces are made.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
@@ -98,26 +77,7 @@ pub enum Placement {
     OnSurface,
 }
 
-impl Placement {
-    /// The name used by the CLI and the JSON report.
-    pub fn name(self) -> &'static str {
-        match self {
-            Placement::OnSurface => "on-surface",
-            Placement::Fitted => "fitted",
-        }
-    }
-}
-
-impl std::str::FromStr for Placement {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "on-surface" => Ok(Placement::OnSurface),
-            "fitted" => Ok(Placement::Fitted),
-            _ => Err(format!("unknown vertex placement {s:?}: use fitted (default) or on-surface")),
-        }
-    }
-}
+crate::named::named_enum!(Placement, "vertex placement", Fitted => "fitted", OnSurface => "on-surface");
 
 /// Options of [`remesh`](super::remesh). Build them from [`RemeshOptions::default`] with the `with_*` setters
 /// (or by setting fields): new options may be added without notice.

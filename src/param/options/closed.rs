@@ -24,17 +24,7 @@ pub enum PunctureEnd {
     Top,
 }
 
-impl std::str::FromStr for PunctureEnd {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "best" => Ok(PunctureEnd::Best),
-            "bottom" => Ok(PunctureEnd::Bottom),
-            "top" => Ok(PunctureEnd::Top),
-            _ => Err(format!("unknown puncture end '{s}': use best, bottom or top")),
-        }
-    }
-}
+crate::named::named_enum!(PunctureEnd, "puncture end", Best => "best", Bottom => "bottom", Top => "top");
 
 /// The default [`ClosedOptions::lambda_fallbacks`]: each tried in turn, above the
 /// `lambda` that failed. 0.5 and 0.8 rescued the stretched meshes above (the bunny

@@ -28,16 +28,7 @@ pub enum OpenInitialMap {
     Composite,
 }
 
-impl std::str::FromStr for OpenInitialMap {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "conformal" => Ok(OpenInitialMap::Conformal),
-            "composite" => Ok(OpenInitialMap::Composite),
-            _ => Err(format!("unknown initial map '{s}': use conformal or composite")),
-        }
-    }
-}
+crate::named::named_enum!(OpenInitialMap, "initial map", Conformal => "conformal", Composite => "composite");
 
 /// How open (disk-like) surfaces are flattened before the transport. Build them from
 /// [`OpenOptions::default`] with the `with_*` setters: new options may be added without notice.
