@@ -1,6 +1,6 @@
 //! Sparse symmetric systems with one 2 x 2 block per pair of neighbouring free vertices: the
-//! normal equations of the global Gauss-Newton steps ([`super::global_area`],
-//! [`super::global_joint`]), whose unknowns are the free vertices' planar displacements.
+//! normal equations of the global area steps ([`super::global_area`]), whose unknowns are the
+//! free vertices' planar displacements.
 
 use super::state::{Incidence, Shaping};
 use crate::linalg::SpdSolver;

@@ -355,19 +355,8 @@ pub(crate) fn optimize_shape(
                 flipper = None;
             }
         }
-        let mut resampled = options.resample && it < lloyd / 2 && target_len > 0.0;
-        // The second half of the relaxation moves faces from where they are too small to
-        // where they are too large (`rebalance`; uniform remeshes, whose targets are chord
-        // areas).
-        if options.resample && !by_covered && target_len > 0.0 && it >= lloyd / 2 && it < lloyd {
-            let rho = vertex_densities(&mesh, input.lift, input.density);
-            let targets = ln_face_targets(&mesh, &face_densities(&mesh.faces, &rho));
-            let (splits, collapses) = rebalance::rebalance(&mut mesh, input.track, &mut arc, input.lift, &|t| targets[t], resample::SPLIT * target_len * len_factor, &length_factor(&rho));
-            report.rebalance_splits += splits;
-            report.rebalance_collapses += collapses;
-            resampled |= splits + collapses > 0;
-        }
-        if resampled && it < lloyd / 2 {
+        let resampled = options.resample && it < lloyd / 2 && target_len > 0.0;
+        if resampled {
             // Splits and collapses balance at a slightly different count than asked for:
             // the target length follows the face count back to the pulled-back mesh's.
             len_factor *= (mesh.faces.len() as f64 / faces0 as f64).sqrt();
@@ -379,10 +368,21 @@ pub(crate) fn optimize_shape(
             let rho = vertex_densities(&mesh, input.lift, input.density);
             report.collapses += resample::collapse_short_edges(&mut mesh, &incidence, input.lift, resample::COLLAPSE * len, resample::SPLIT * len, &length_factor(&rho));
         }
+        // The second half of the relaxation moves faces from where they are too small to
+        // where they are too large (`rebalance`): uniform remeshes only, whose targets are
+        // the mean chord area and whose length factor is 1.
+        let rebalanced = options.resample && !by_covered && target_len > 0.0 && (lloyd / 2..lloyd).contains(&it) && {
+            let ln_mean = polish::ln_mean_area(&mesh);
+            let (splits, collapses) = rebalance::rebalance(&mut mesh, input.track, &mut arc, input.lift, &|_| ln_mean, resample::SPLIT * target_len * len_factor, &|_, _| 1.0);
+            report.rebalance_splits += splits;
+            report.rebalance_collapses += collapses;
+            splits + collapses > 0
+        };
+        let faces_changed = resampled || rebalanced;
         // The edge table lives across iterations: only splits and collapses change the faces
         // besides the flips themselves.
         let mut kept = match flipper.take() {
-            Some(mut f) if !resampled => {
+            Some(mut f) if !faces_changed => {
                 f.refresh(&mesh);
                 f
             }
@@ -392,7 +392,7 @@ pub(crate) fn optimize_shape(
         flipper = Some(kept);
         // An open surface's boundary cycle changes with splits and collapses only (a flipped
         // edge is an interior one); a closed surface's rim does not slide.
-        if input.track.is_some() && (cycle.is_none() || resampled) {
+        if input.track.is_some() && (cycle.is_none() || faces_changed) {
             cycle = Some(boundary::boundary_cycle(&mesh.faces, mesh.plane.len()));
         }
         let (next, prev) = cycle.as_ref().map_or((&[][..], &[][..]), |(n, p)| (&n[..], &p[..]));
