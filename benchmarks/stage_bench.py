@@ -14,7 +14,8 @@ benchmarks/stage_bench.sh, which builds capmesh and the synthetic meshes.
 `--scale` (issue 27) runs only the growth series instead: the 12k and 48k brains of tests/data,
 each midpoint-subdivided once and twice (50k, 194k, 776k vertices: the same surfaces, so the
 same map is expected), and a 1M-vertex closed surface (the bumpy ellipsoid on the geodesic
-sphere), once each without MeshLab; it writes the stage times, peak RSS, mean |d_area| and the
+sphere), once each without MeshLab, then the three largest again at one level
+(`--multilevel-above 0`); it writes the stage times, peak RSS, mean |d_area| and the
 fitted growth exponent of each stage (least squares of log time on log V over the 48k brain's
 series) to benchmarks/results/stage_bench_scale.{md,json}. `--max-vertices N` leaves out the
 subdivided and synthetic cases above N vertices (the bundled brains always run; on a shared
@@ -96,12 +97,12 @@ def run_child(argv, limit):
     return status, wall, usage.ru_maxrss / 1024.0, out, err
 
 
-def ours(path, workdir, limit):
+def ours(path, workdir, limit, extra=()):
     report = os.path.join(workdir, "report.json")
     out = os.path.join(workdir, "out.ply")
     if os.path.exists(report):
         os.remove(report)
-    status, wall, rss, _, err = run_child([CAPMESH, "--quiet", "remesh", path, "-o", out, "--faces", str(FACES), "--report", report], limit)
+    status, wall, rss, _, err = run_child([CAPMESH, "--quiet", "remesh", path, "-o", out, "--faces", str(FACES), "--report", report, *extra], limit)
     row = {"status": status, "wall_seconds": wall, "peak_rss_mib": rss, "cpu_seconds": LAST_CPU_SECONDS}
     if status != 0:
         row["error"] = err.strip().splitlines()[-1] if err.strip() else str(status)
@@ -120,6 +121,7 @@ def ours(path, workdir, limit):
         refine=p["refine_seconds"],
         param=p["seconds"],
         pullback=r["pullback_seconds"],
+        shape=r.get("shape_seconds", 0.0),
         equalize=r["equalize_seconds"],
         metrics=r["metrics_seconds"],
         write=r["write_seconds"],
@@ -131,8 +133,18 @@ def ours(path, workdir, limit):
         folded_before=p.get("untangle", {}).get("folded_before"),
         lambda_fallbacks=len(p.get("lambda_fallbacks", [])),
     )
-    # Parameterization plus remeshing, without the quality metrics and the file I/O.
-    row["param_remesh"] = row["param"] + row["pullback"] + row["equalize"]
+    ml = p.get("multilevel")
+    if ml:
+        row.update(
+            coarse_vertices=ml["coarse_vertices"],
+            decimate=ml["decimate_seconds"],
+            coarse=ml["coarse_seconds"],
+            prolong=ml["prolong_seconds"],
+            folded_before=ml["folded_after_prolong"],
+        )
+    # Parameterization plus remeshing (pull-back, shape stage, equalization), without the
+    # quality metrics and the file I/O.
+    row["param_remesh"] = row["param"] + row["pullback"] + row["shape"] + row["equalize"]
     return row
 
 
@@ -199,7 +211,7 @@ def write_report(rows, info):
         "MeshLab's isotropic explicit remeshing (pymeshlab 2025.7.post1, target edge of an equilateral",
         f"mesh of {FACES} faces over the input's area, 10 iterations) on the same file in the same run,",
         f"alternating with capmesh, {info.get('repeats', 1)} times each (the 1M disk once): medians, and capmesh's stage columns from its median run.",
-        "Seconds per stage; `param+remesh` is the parameterization, pull-back and area equalization",
+        "Seconds per stage; `param+remesh` is the parameterization, pull-back, shape stage and area equalization",
         "(no quality metrics, no file I/O), compared with MeshLab's filter time (no I/O either).",
         "Peak RSS is the whole process's. Targets (issue 7): hand under 2 s, 100k vertices under 5 s",
         "(the 164k-vertex ellipsoid held to it too), 1M under 60 s and 4 GiB.",
@@ -230,7 +242,7 @@ def write_report(rows, info):
         f.write("\n".join(lines) + "\n")
 
 
-STAGES = ["flatten", "transport", "regularise", "refine", "pullback", "equalize", "param_remesh"]
+STAGES = ["flatten", "transport", "regularise", "refine", "pullback", "shape", "param_remesh"]
 
 
 def growth_exponent(points):
@@ -261,20 +273,25 @@ def write_scale_report(rows, info, series):
         + (f" (load average {load[0]:.1f} at the start, {load[1]:.1f} at the end on {info['cores']} cores)" if load else "")
         + ": the seconds are wall time under that load and vary from run to run; CPU seconds (user + system) of the whole process are given beside them.",
         "Subdivided meshes are the same surface (midpoint 1:4 split, `synth_mesh subdivide`), so their mean |d_area| should match the coarse one's.",
+        "Closed surfaces above 150k vertices are mapped through a decimated copy by default (`--multilevel-above`, docs/method.md section 20): "
+        "`path` says how, `decimate` and `prolong` are that path's own stages, and the flatten, transport and regularise columns are then the decimated copy's; "
+        "the rows marked `one level` are the same meshes with `--multilevel-above 0`, run in the same session for the ratios.",
+        "`param+remesh` is the parameterization, pull-back, shape stage and equalization (no quality metrics, no file I/O).",
         "Peak RSS is the whole process's (the report has no per-stage memory).",
         "Targets (issue 27): time(776k) / time(194k) <= 5 for param+remesh, 1M under 60 s and 4 GiB, 48k brain under 1 s.",
         "",
-        "| mesh | V | flatten | transport | regularise | refine | pull-back | equalize | param+remesh | CPU s | peak RSS MiB | mean \\|d_area\\| | folds before repair | lambda fallbacks |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "| mesh | V | path | decimate | flatten | transport | regularise | prolong | refine | pull-back | shape | param+remesh | CPU s | peak RSS MiB | mean \\|d_area\\| | folds before repair | lambda fallbacks |",
+        "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for r in rows:
         o = r["ours"]
         if o.get("status") != 0:
-            lines.append(f"| {r['name']} | - | {o.get('status')}: {o.get('error', '')} after {o['wall_seconds']:.0f} s wall, {fmt(o.get('cpu_seconds'), 0)} CPU s, peak {o['peak_rss_mib']:.0f} MiB |" + " |" * 11)
+            lines.append(f"| {r['name']} | - | {o.get('status')}: {o.get('error', '')} after {o['wall_seconds']:.0f} s wall, {fmt(o.get('cpu_seconds'), 0)} CPU s, peak {o['peak_rss_mib']:.0f} MiB |" + " |" * 14)
             continue
+        path = f"decimated to {o['coarse_vertices']}" if o.get("coarse_vertices") else "one level"
         lines.append(
-            f"| {r['name']} | {o['vertices']} | {fmt(o['flatten'])} | {fmt(o['transport'])} | {fmt(o['regularise'])} | {fmt(o['refine'])} | {fmt(o['pullback'])} | "
-            f"{fmt(o['equalize'])} | {fmt(o['param_remesh'])} | {fmt(o.get('cpu_seconds'), 1)} | {o['peak_rss_mib']:.0f} | {o['mean_abs_area_distortion']:.4f} | {o.get('folded_before', '-')} | {o.get('lambda_fallbacks', '-')} |"
+            f"| {r['name']} | {o['vertices']} | {path} | {fmt(o.get('decimate'))} | {fmt(o['flatten'])} | {fmt(o['transport'])} | {fmt(o['regularise'])} | {fmt(o.get('prolong'))} | {fmt(o['refine'])} | {fmt(o['pullback'])} | "
+            f"{fmt(o['shape'])} | {fmt(o['param_remesh'])} | {fmt(o.get('cpu_seconds'), 1)} | {o['peak_rss_mib']:.0f} | {o['mean_abs_area_distortion']:.4f} | {o.get('folded_before', '-')} | {o.get('lambda_fallbacks', '-')} |"
         )
     fitted = [n for n in series if n in ok]
     lines += ["", "Fitted growth exponent (time ~ V^k, least squares over the completed runs of " + ", ".join(fitted) + "; wall seconds):", "",
@@ -283,6 +300,15 @@ def write_scale_report(rows, info, series):
     a, b = ok.get("closed_brain_choi x2"), ok.get("closed_brain_choi x1")
     if a and b:
         lines.append(f"time(776k) / time(194k), param+remesh: {a['param_remesh'] / b['param_remesh']:.2f} (target <= 5); CPU seconds: {a['cpu_seconds'] / b['cpu_seconds']:.2f}.")
+    for n in ["closed_brain_choi x1", "closed_brain_choi x2", "synthetic closed ellipsoid 1m"]:
+        m, one = ok.get(n), ok.get(n + " one level")
+        if m and one:
+            lines.append(f"{n}: param+remesh {m['param_remesh']:.1f} s against {one['param_remesh']:.1f} s at one level ({one['param_remesh'] / m['param_remesh']:.1f}x), "
+                         f"peak {m['peak_rss_mib']:.0f} against {one['peak_rss_mib']:.0f} MiB, mean |d_area| {m['mean_abs_area_distortion']:.4f} against {one['mean_abs_area_distortion']:.4f}.")
+    c = ok.get("closed_brain_choi")
+    for n in ["closed_brain_choi x1", "closed_brain_choi x2"]:
+        if c and n in ok:
+            lines.append(f"{n}: mean |d_area| {ok[n]['mean_abs_area_distortion'] / c['mean_abs_area_distortion']:.2f} times the 48k brain's (target <= 1.5).")
     m = ok.get("synthetic closed ellipsoid 1m")
     if m:
         met = m["param_remesh"] <= 60 and m["peak_rss_mib"] <= 4096
@@ -338,10 +364,13 @@ def scale(args):
         info["skipped"], info["max_vertices"] = skipped, limit_v
     info["load_average"] = [os.getloadavg()[0]]
     info["cases"] = [(n, os.path.basename(p)) for n, p in cases]
+    # The largest cases again at one level (the pipeline before the multilevel path), for the
+    # side-by-side ratios.
+    cases += [(n + " one level", p) for n, p in cases if n in ("closed_brain_choi x1", "closed_brain_choi x2", "synthetic closed ellipsoid 1m")]
     rows = []
     for name, path in cases:
         print(f"{name}: capmesh ...", flush=True)
-        o = ours(path, work, args.limit)
+        o = ours(path, work, args.limit, ["--multilevel-above", "0"] if name.endswith(" one level") else [])
         rows.append({"name": name, "vertices": o.get("vertices"), "ours": o})
         print(f"  {o.get('status')} param+remesh {fmt(o.get('param_remesh'))} s, CPU {fmt(o.get('cpu_seconds'), 1)} s, peak {o['peak_rss_mib']:.0f} MiB, mean |d_area| {fmt(o.get('mean_abs_area_distortion'), 4)}", flush=True)
         info["load_average"] = [info["load_average"][0], os.getloadavg()[0]]

@@ -42,3 +42,43 @@ fn the_subdivided_12k_brain_maps_as_well_as_the_12k_brain() {
     // The same surface needs no second attempt with a larger lambda.
     assert!(rb.lambda_fallbacks.is_empty(), "subdivided 12k brain: {:?}", rb.lambda_fallbacks);
 }
+
+/// The multilevel path (`--multilevel-above`), run here on the subdivided 12k brain with
+/// the thresholds lowered so that it maps through a decimated copy of 12.5k vertices: the
+/// map is as good as the 12k brain's own, unfolded, punctured at one quad of the input
+/// whose corners lie on the rim, and every removed vertex is put back.
+#[test]
+fn the_subdivided_12k_brain_maps_as_well_through_a_decimated_copy() {
+    let coarse = read_mesh(&data("closed_brain12k_choi.obj.gz")).unwrap_or_else(|e| panic!("{e}"));
+    let fine = subdivide_midpoint(&coarse, 1);
+    let direct = parameterize(&coarse, &ParamOptions::default(), &NoProgress).unwrap_or_else(|e| panic!("12k brain: {e}"));
+    assert!(direct.report.multilevel.is_none(), "12k vertices are mapped at their own resolution by default");
+    let mut options = ParamOptions::default();
+    options.closed.multilevel_above = 20_000;
+    options.closed.coarse_vertices = 12_500;
+    let map = parameterize(&fine, &options, &NoProgress).unwrap_or_else(|e| panic!("subdivided 12k brain: {e}"));
+    let r = &map.report;
+    let ml = r.multilevel.as_ref().expect("mapped through a decimated copy");
+    eprintln!(
+        "subdivided 12k brain through {} vertices: mean |d_area| {:.4} (12k brain {:.4}), prolongation {:?}, folded after it {}",
+        ml.coarse_vertices, r.area_distortion.mean_abs, direct.report.area_distortion.mean_abs, ml.prolong, ml.folded_after_prolong
+    );
+    assert_eq!(ml.coarse_vertices, 12_500);
+    assert_eq!(ml.prolong.inserted, fine.n_vertices() - ml.coarse_vertices);
+    assert_eq!(r.flipped_faces, 0, "folded faces");
+    assert_eq!(r.quality, MapQuality::Good);
+    assert!(
+        r.area_distortion.mean_abs <= 1.5 * direct.report.area_distortion.mean_abs,
+        "mean |d_area| {} is more than 1.5x the 12k brain's {}",
+        r.area_distortion.mean_abs,
+        direct.report.area_distortion.mean_abs
+    );
+    // Punctured at two input faces, whose corners are on the rim of the disk of radius r*.
+    assert_eq!(map.bottom_faces.len(), 2);
+    let r_star = r.r_star.expect("adaptive domain");
+    let quad = r.puncture.as_ref().expect("closed surface").quad;
+    for v in quad {
+        let p = map.plane[v as usize];
+        assert!((p[0].hypot(p[1]) - r_star).abs() < 1e-9 * r_star, "quad corner {v} at radius {} of {r_star}", p[0].hypot(p[1]));
+    }
+}

@@ -36,11 +36,15 @@ pub struct PunctureOptions {
     pub reach: f64,
     /// Puncture at the other end of the principal axis (the input's top). Default `false`.
     pub other_end: bool,
+    /// The quadrilaterals to puncture, chosen already, as the edge the two faces share, at
+    /// the bottom and at the top (the multilevel parameterization punctures its coarse mesh
+    /// where the input was punctured). Default `None`: chosen as above.
+    pub(crate) given: Option<[[u32; 2]; 2]>,
 }
 
 impl Default for PunctureOptions {
     fn default() -> Self {
-        Self { max_ratio: 1.3, candidates: 500, acceptable_ratio: 2.0, reach: 0.25, other_end: false }
+        Self { max_ratio: 1.3, candidates: 500, acceptable_ratio: 2.0, reach: 0.25, other_end: false, given: None }
     }
 }
 
@@ -146,6 +150,11 @@ pub fn choose_puncture(
 ) -> Option<Puncture> {
     let (c, axis) = principal_axis(vertices, faces);
     let axis = if options.other_end { scale(axis, -1.0) } else { axis };
+    if let Some(given) = options.given {
+        let [a, b] = given[options.other_end as usize];
+        let edge = edges.iter().find(|e| (e.0 == a && e.1 == b) || (e.0 == b && e.1 == a))?;
+        return quadrilateral(vertices, faces, *edge, axis).map(|(_, p)| p);
+    }
     let heights = vertices.iter().map(|p| dot(sub(*p, c), axis));
     let (lowest, highest) = heights.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| (lo.min(h), hi.max(h)));
     let bottom = add(c, scale(axis, lowest));

@@ -5,6 +5,7 @@
 pub(crate) mod error;
 pub(crate) mod fasthash;
 pub mod geometry;
+pub(crate) mod decimate;
 pub mod repair;
 pub mod shapes;
 pub mod subdivide;

@@ -6,7 +6,7 @@ use super::prepare::Prepared;
 use super::report::{MapQuality, ParamReport};
 use super::search::{search_radius, transport_density, Searched};
 use crate::cap::domain::Domain;
-use crate::cap::stereographic::{inverse_stereographic, z_star_of_radius};
+use crate::cap::stereographic::{inverse_stereographic, stereographic, z_star_of_radius};
 use crate::cap::CapMap;
 use crate::error::Error;
 use crate::linalg::cotangent_weights;
@@ -52,8 +52,8 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         flatten_seconds,
         transport_seconds: search_seconds,
     } = s;
-    let Prepared { start, welded, kind, .. } = prepared;
-    let (start, kind, work) = (*start, *kind, &welded.mesh);
+    let Prepared { welded, kind, .. } = prepared;
+    let (kind, work) = (*kind, &welded.mesh);
     let t_ot = Instant::now();
     let transported = match map {
         Some(map) => map,
@@ -67,31 +67,14 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         }
     };
     let transport_seconds = search_seconds + t_ot.elapsed().as_secs_f64();
-    let to_cap = |p: &[[f64; 2]]| -> Vec<[f64; 3]> {
-        if options.domain == Domain::Disk {
-            lift(p)
-        } else {
-            p.iter().map(|&q| inverse_stereographic(q)).collect()
-        }
-    };
+    let to_cap = |p: &[[f64; 2]]| cap_points(options.domain, p);
     let t_reg = Instant::now();
     let cot = cotangent_weights(&work.vertices, &faces);
     let held = if kind == SurfaceKind::ClosedSphere { within_rings(&on_boundary, &faces, PUNCTURE_HELD_RINGS) } else { on_boundary.clone() };
     let chosen = smooth_centroid_map(&transported, &work.vertices, &faces, &cot, &on_boundary, &held, radius, options.refinement.smoothing, &to_cap).map_err(OmtError::Linear)?;
-    let (kappa, mut plane, untangle_report, trials) = (chosen.kappa, chosen.positions, chosen.untangle, chosen.trials);
-    let lift_one = |q: [f64; 2]| if options.domain == Domain::Disk { [q[0], q[1], 0.0] } else { inverse_stereographic(q) };
+    let (kappa, plane, untangle_report, trials) = (chosen.kappa, chosen.positions, chosen.untangle, chosen.trials);
     let smoothing_seconds = t_reg.elapsed().as_secs_f64();
-    progress::check(progress, Stage::Project, 0.0, "area refinement")?;
-    let t_refine = Instant::now();
-    let refinement = refine_areas(&mut plane, &work.vertices, &faces, &on_boundary, &lift_one, RefineOptions::default().with_sweeps(options.refinement.area_refinement));
-    let refine_seconds = t_refine.elapsed().as_secs_f64();
-    progress::check(progress, Stage::Project, 0.0, "inverse stereographic projection")?;
-    let cap_work = to_cap(&plane);
-    let flipped_faces = folded_faces(&plane, &faces).len();
     let spherical = options.domain != Domain::Disk;
-    let d_area = area_distortion(&work.vertices, &cap_work, &faces);
-    let d_angle = angle_distortion(&work.vertices, &cap_work, &faces);
-    let area_stats = Stats::of(d_area.iter().copied());
     let report = ParamReport {
         domain: options.domain,
         kind,
@@ -101,13 +84,13 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         split_vertices: welded.split_vertices,
         r_star: spherical.then_some(radius),
         z_star: spherical.then(|| z_star_of_radius(radius)),
-        quality: MapQuality::of(options.domain, area_stats.mean_abs),
-        area_distortion: area_stats,
-        angle_distortion: Stats::of(d_angle.iter().copied()),
-        conformal_energy: conformal_energy(&work.vertices, &plane, &faces),
-        flipped_faces,
+        quality: MapQuality::Unrated,
+        area_distortion: Stats::default(),
+        angle_distortion: Stats::default(),
+        conformal_energy: 0.0,
+        flipped_faces: 0,
         untangle: untangle_report,
-        area_refinement: refinement,
+        area_refinement: Default::default(),
         smoothing_kappa: kappa,
         smoothing_trials: trials,
         newton_iterations,
@@ -120,12 +103,51 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         puncture,
         puncture_trials: Vec::new(),
         lambda_fallbacks: Vec::new(),
-        seconds: start.elapsed().as_secs_f64(),
+        multilevel: None,
+        seconds: 0.0,
         flatten_seconds,
         transport_seconds,
         smoothing_seconds,
-        refine_seconds,
+        refine_seconds: 0.0,
     };
+    conclude(mesh, prepared, &faces, &on_boundary, plane, options, progress, report)
+}
+
+/// The end of every parameterization, once the planar map `plane` of the prepared mesh's
+/// `faces` (the punctured ones for a closed surface) is unfolded: the face-level area
+/// refinement, the inverse stereographic projection, the distortions and the [`CapMap`] in
+/// the input's numbering. `report` holds what the earlier stages measured; the rest is
+/// filled here.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn conclude(
+    mesh: &TriMesh,
+    prepared: &Prepared,
+    faces: &[[u32; 3]],
+    on_boundary: &[bool],
+    mut plane: Vec<[f64; 2]>,
+    options: &ParamOptions,
+    progress: &dyn Progress,
+    mut report: ParamReport,
+) -> Result<CapMap, Error> {
+    let Prepared { start, welded, .. } = prepared;
+    let work = &welded.mesh;
+    let faces = faces.to_vec();
+    let to_cap = |p: &[[f64; 2]]| cap_points(options.domain, p);
+    let lift_one = |q: [f64; 2]| cap_point(options.domain, q);
+    progress::check(progress, Stage::Project, 0.0, "area refinement")?;
+    let t_refine = Instant::now();
+    report.area_refinement = refine_areas(&mut plane, &work.vertices, &faces, on_boundary, &lift_one, RefineOptions::default().with_sweeps(options.refinement.area_refinement));
+    report.refine_seconds = t_refine.elapsed().as_secs_f64();
+    progress::check(progress, Stage::Project, 0.0, "inverse stereographic projection")?;
+    let cap_work = to_cap(&plane);
+    report.flipped_faces = folded_faces(&plane, &faces).len();
+    let d_area = area_distortion(&work.vertices, &cap_work, &faces);
+    let d_angle = angle_distortion(&work.vertices, &cap_work, &faces);
+    report.area_distortion = Stats::of(d_area.iter().copied());
+    report.quality = MapQuality::of(options.domain, report.area_distortion.mean_abs);
+    report.angle_distortion = Stats::of(d_angle.iter().copied());
+    report.conformal_energy = conformal_energy(&work.vertices, &plane, &faces);
+    report.seconds = start.elapsed().as_secs_f64();
     // Back to the input's vertex numbering; vertices no face uses go to the origin.
     let plane_all = welded.old_to_new.iter().map(|&v| plane.get(v as usize).copied().unwrap_or([0.0; 2])).collect();
     let cap_all = welded.old_to_new.iter().map(|&v| cap_work.get(v as usize).copied().unwrap_or([0.0; 3])).collect();
@@ -144,6 +166,36 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
     let input_faces = measured_input_faces(mesh, &welded.old_to_new, report.puncture.as_ref().map(|p| p.faces));
     let (face_area_distortion, corner_angle_distortion) = per_input_face(mesh.n_faces(), &input_faces, &d_area, &d_angle);
     Ok(CapMap { plane: plane_all, cap: cap_all, bottom_faces, face_area_distortion, corner_angle_distortion, kind: report.kind, report })
+}
+
+/// The domain points of planar points ([`cap_point`]).
+fn cap_points(domain: Domain, p: &[[f64; 2]]) -> Vec<[f64; 3]> {
+    if domain == Domain::Disk {
+        lift(p)
+    } else {
+        p.iter().map(|&q| inverse_stereographic(q)).collect()
+    }
+}
+
+/// The domain point of a planar point: the inverse stereographic projection, or `(x, y, 0)`
+/// for the planar disk.
+pub(crate) fn cap_point(domain: Domain, q: [f64; 2]) -> [f64; 3] {
+    if domain == Domain::Disk {
+        [q[0], q[1], 0.0]
+    } else {
+        inverse_stereographic(q)
+    }
+}
+
+/// The planar point of a point near the domain: the stereographic projection of its
+/// direction, or `(x, y)` for the planar disk ([`cap_point`]'s inverse).
+pub(crate) fn plane_point(domain: Domain, q: [f64; 3]) -> [f64; 2] {
+    if domain == Domain::Disk {
+        [q[0], q[1]]
+    } else {
+        let l = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
+        if l > 0.0 { stereographic([q[0] / l, q[1] / l, q[2] / l]) } else { [0.0; 2] }
+    }
 }
 
 /// The input face of each measured face, in order: welding keeps the input's face order and

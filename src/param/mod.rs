@@ -17,6 +17,7 @@
 
 pub(crate) mod finish;
 pub(crate) mod lambda_fallback;
+pub(crate) mod multilevel;
 pub(crate) mod options;
 pub(crate) mod prepare;
 pub(crate) mod puncture_end;
@@ -25,12 +26,13 @@ pub(crate) mod search;
 
 pub use crate::cap::CapMap;
 pub use lambda_fallback::POOR_MAP_AREA_DISTORTION;
+pub use multilevel::COARSE_RATIO;
 pub use options::{
     ClosedOptions, OpenInitialMap, OpenOptions, ParamOptions, PunctureEnd, RefinementOptions, SearchOptions, DEFAULT_AREA_REFINEMENT,
-    DEFAULT_LAMBDA_FALLBACKS, DEFAULT_OPEN_FACTORED_ITERATIONS, DEFAULT_OPEN_LAMBDA, DEFAULT_SEARCH_SITES, MASS_TOLERANCE,
+    DEFAULT_COARSE_VERTICES, DEFAULT_LAMBDA_FALLBACKS, DEFAULT_MULTILEVEL_ABOVE, DEFAULT_OPEN_FACTORED_ITERATIONS, DEFAULT_OPEN_LAMBDA, DEFAULT_SEARCH_SITES, MASS_TOLERANCE,
     TRANSPORT_TOLERANCE,
 };
-pub use report::{FlattenReport, LambdaFallback, MapQuality, ParamReport, PunctureTrial, RadiusSample};
+pub use report::{FlattenReport, LambdaFallback, MapQuality, MultilevelReport, ParamReport, PunctureTrial, RadiusSample};
 pub use search::{search_level_sites, MIN_SEARCH_SITES, SEARCH_RATIO, SMALL_SEARCH_RATIO};
 
 use crate::error::Error;
@@ -65,6 +67,9 @@ fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress:
     let start = Instant::now();
     progress::check(progress, Stage::Validate, 0.0, "checking the mesh")?;
     let prepared = prepare(mesh, options)?;
+    if multilevel::applies(&prepared, options) {
+        return multilevel::parameterize_multilevel(mesh, &prepared, options, progress);
+    }
     // Every attempt not returned, the best poor map so far and the last transport failure.
     let mut attempts = Vec::new();
     let mut best: Option<(f64, CapMap)> = None;

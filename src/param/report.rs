@@ -6,7 +6,7 @@ use crate::flatten::puncture::Puncture;
 use crate::flatten::DiskConformalReport;
 use crate::mesh::SurfaceKind;
 use crate::metrics::Stats;
-use crate::refine::{AreaRefineReport, SmoothingTrial, UntangleReport};
+use crate::refine::{AreaRefineReport, ProlongReport, SmoothingTrial, UntangleReport};
 
 /// The initial flattening's report, by surface kind.
 #[derive(Debug, Clone, serde::Serialize)]
@@ -146,6 +146,11 @@ pub struct ParamReport {
     /// stalled or its map was poor, [`super::ClosedOptions::lambda_fallbacks`]); `flatten`
     /// has the `lambda` kept. Empty when the first worked.
     pub lambda_fallbacks: Vec<LambdaFallback>,
+    /// The multilevel parameterization of a large closed surface (see
+    /// [`super::ClosedOptions::multilevel_above`]): the stages above ran on a decimated mesh,
+    /// whose map was prolonged to every vertex and refined there. `None` when the surface was
+    /// mapped at its own resolution.
+    pub multilevel: Option<MultilevelReport>,
     /// Wall-clock seconds of the whole parameterization (for [`super::PunctureEnd::Best`] both
     /// ends' searches, in parallel, and the kept end's second half; the stage seconds below
     /// are the kept end's).
@@ -160,6 +165,28 @@ pub struct ParamReport {
     pub smoothing_seconds: f64,
     /// Seconds spent in the face-level area refinement.
     pub refine_seconds: f64,
+}
+
+/// The multilevel parameterization of a large closed surface (`crate::param::multilevel`).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct MultilevelReport {
+    /// Vertices of the decimated mesh that was parameterized.
+    pub coarse_vertices: usize,
+    /// Mean `|d_area|` of the decimated mesh's map.
+    pub coarse_mean_abs_area_distortion: f64,
+    /// How the removed vertices were put back.
+    pub prolong: ProlongReport,
+    /// Faces the prolonged map folded (only where rounding left an inserted vertex no
+    /// unfolded place, [`ProlongReport::unplaced`]).
+    pub folded_after_prolong: usize,
+    /// The fold repair of those faces, when there were any.
+    pub untangle: Option<UntangleReport>,
+    /// Seconds of the decimation (the punctures chosen first).
+    pub decimate_seconds: f64,
+    /// Seconds of the decimated mesh's parameterization.
+    pub coarse_seconds: f64,
+    /// Seconds of the prolongation.
+    pub prolong_seconds: f64,
 }
 
 /// One end tried by [`super::PunctureEnd::Best`].

@@ -134,7 +134,19 @@ pub(crate) fn search_radius<'p>(prepared: &'p Prepared, options: &ParamOptions, 
     for &b in &boundary {
         on_boundary[b as usize] = true;
     }
-    let target = vertex_areas(&work.vertices, &faces);
+    let target = match &options.vertex_masses {
+        // Welding keeps or merges input vertices: each welded vertex gets its inputs' masses.
+        Some(masses) => {
+            let mut t = vec![0.0; work.n_vertices()];
+            for (&m, &v) in masses.iter().zip(&prepared.welded.old_to_new) {
+                if let Some(x) = t.get_mut(v as usize) {
+                    *x += m;
+                }
+            }
+            t
+        }
+        None => vertex_areas(&work.vertices, &faces),
+    };
     let density = transport_density(options.domain);
     let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, density, options.transport.clone());
     let t_ot = Instant::now();

@@ -8,9 +8,11 @@ pub mod area_refine;
 pub(crate) mod boundary_polygon;
 pub(crate) mod energy_untangle;
 pub(crate) mod kernel_untangle;
+pub(crate) mod prolong;
 pub(crate) mod smoothing;
 pub(crate) mod untangle;
 
 pub use area_refine::{AreaRefineReport, RefineOptions};
+pub use prolong::ProlongReport;
 pub use smoothing::{Smoothing, SmoothingTrial};
 pub use untangle::UntangleReport;

@@ -41,6 +41,14 @@ pub struct MapArgs {
     /// r* only (0: search at full resolution, the paper's method).
     #[arg(long, default_value_t = capmesh::param::DEFAULT_SEARCH_SITES)]
     pub search_sites: usize,
+    /// Closed surfaces of more vertices than this are mapped through a decimated copy of
+    /// --coarse-vertices vertices, whose map is prolonged to every vertex and refined there
+    /// (near-linear time and memory); 0: never.
+    #[arg(long, default_value_t = capmesh::param::DEFAULT_MULTILEVEL_ABOVE)]
+    pub multilevel_above: usize,
+    /// Vertices of the decimated copy of a large closed surface (see --multilevel-above).
+    #[arg(long, default_value_t = capmesh::param::DEFAULT_COARSE_VERTICES)]
+    pub coarse_vertices: usize,
     /// Exit 0 with a poor map (mean |d_area| above 0.3 on the adaptive cap; the report's
     /// quality is "poor") instead of 3. The outputs are written either way.
     #[arg(long)]
@@ -58,6 +66,8 @@ impl MapArgs {
         if self.no_lambda_fallback {
             options.closed.lambda_fallbacks.clear();
         }
+        options.closed.multilevel_above = self.multilevel_above;
+        options.closed.coarse_vertices = self.coarse_vertices;
         options.search.sites = self.search_sites;
         options.refinement.smoothing = self.smoothing;
         options.refinement.area_refinement = self.area_refinement;

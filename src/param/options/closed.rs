@@ -48,11 +48,32 @@ pub struct ClosedOptions {
     /// empty keeps the first `lambda`'s result. Default [`DEFAULT_LAMBDA_FALLBACKS`]
     /// (0.5, 0.8, 1).
     pub lambda_fallbacks: Vec<f64>,
+    /// Closed surfaces of more vertices than this are mapped through a decimated copy of
+    /// [`ClosedOptions::coarse_vertices`] vertices, whose map is prolonged to every vertex
+    /// and refined there (see `crate::param::multilevel`); 0: never. Default
+    /// [`DEFAULT_MULTILEVEL_ABOVE`].
+    pub multilevel_above: usize,
+    /// Vertices of the decimated copy of a large closed surface (at least; an eighth of the
+    /// input's when that is more, [`crate::param::COARSE_RATIO`]). Default
+    /// [`DEFAULT_COARSE_VERTICES`].
+    pub coarse_vertices: usize,
 }
+
+/// The default [`ClosedOptions::multilevel_above`].
+pub const DEFAULT_MULTILEVEL_ABOVE: usize = 150_000;
+
+/// The default [`ClosedOptions::coarse_vertices`].
+pub const DEFAULT_COARSE_VERTICES: usize = 50_000;
 
 impl Default for ClosedOptions {
     fn default() -> Self {
-        Self { flatten: ClosedFlattenOptions::default(), puncture_end: PunctureEnd::Best, lambda_fallbacks: DEFAULT_LAMBDA_FALLBACKS.to_vec() }
+        Self {
+            flatten: ClosedFlattenOptions::default(),
+            puncture_end: PunctureEnd::Best,
+            lambda_fallbacks: DEFAULT_LAMBDA_FALLBACKS.to_vec(),
+            multilevel_above: DEFAULT_MULTILEVEL_ABOVE,
+            coarse_vertices: DEFAULT_COARSE_VERTICES,
+        }
     }
 }
 
@@ -78,6 +99,18 @@ impl ClosedOptions {
     /// Set [`ClosedOptions::lambda_fallbacks`] (empty: none).
     pub fn with_lambda_fallbacks(mut self, lambda_fallbacks: Vec<f64>) -> Self {
         self.lambda_fallbacks = lambda_fallbacks;
+        self
+    }
+
+    /// Set [`ClosedOptions::multilevel_above`] (0: never).
+    pub fn with_multilevel_above(mut self, multilevel_above: usize) -> Self {
+        self.multilevel_above = multilevel_above;
+        self
+    }
+
+    /// Set [`ClosedOptions::coarse_vertices`].
+    pub fn with_coarse_vertices(mut self, coarse_vertices: usize) -> Self {
+        self.coarse_vertices = coarse_vertices;
         self
     }
 }

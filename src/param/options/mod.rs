@@ -11,7 +11,7 @@ pub(crate) mod search;
 use crate::cap::Domain;
 use crate::omt::OtOptions;
 use crate::refine::Smoothing;
-pub use closed::{ClosedOptions, PunctureEnd, DEFAULT_LAMBDA_FALLBACKS};
+pub use closed::{ClosedOptions, PunctureEnd, DEFAULT_COARSE_VERTICES, DEFAULT_LAMBDA_FALLBACKS, DEFAULT_MULTILEVEL_ABOVE};
 pub use open::{OpenInitialMap, OpenOptions, DEFAULT_OPEN_FACTORED_ITERATIONS, DEFAULT_OPEN_LAMBDA};
 pub use refinement::{RefinementOptions, DEFAULT_AREA_REFINEMENT};
 pub use search::{SearchOptions, DEFAULT_SEARCH_SITES, MASS_TOLERANCE};
@@ -50,6 +50,10 @@ pub struct ParamOptions {
     /// The smoothing and area refinement after the transport. Default
     /// [`RefinementOptions::default`].
     pub refinement: RefinementOptions,
+    /// The transport's target mass of each input vertex, in place of its area (a third of
+    /// its faces' areas): the fine surface's area each vertex of a decimated copy stands for
+    /// (`crate::param::multilevel`). Default `None`.
+    pub(crate) vertex_masses: Option<std::sync::Arc<Vec<f64>>>,
 }
 
 impl Default for ParamOptions {
@@ -62,6 +66,7 @@ impl Default for ParamOptions {
             closed: ClosedOptions::default(),
             search: SearchOptions::default(),
             refinement: RefinementOptions::default(),
+            vertex_masses: None,
         }
     }
 }
