@@ -390,6 +390,37 @@ fn results_do_not_depend_on_the_number_of_threads() {
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--threads"), "{}", String::from_utf8_lossy(&refused.stderr));
 }
 
+/// The multilevel map (issue 27) is the same bytes on any number of threads too: the 12k brain
+/// subdivided once, mapped through a decimated copy of 12.5k vertices (thresholds lowered from
+/// their defaults so that a small mesh takes that path), on 1 and 2 threads.
+#[test]
+fn multilevel_maps_do_not_depend_on_the_number_of_threads() {
+    let dir = TempDir::new("cli-multilevel");
+    let fine = capmesh::mesh::subdivide_midpoint(&capmesh::io::read_mesh(&data("closed_brain12k_choi.obj.gz")).unwrap(), 1);
+    let input = dir.join("brain12k_x1.ply");
+    capmesh::io::write_mesh(&input, &fine).unwrap();
+    let outputs: Vec<(Vec<u8>, serde_json::Value)> = ["1", "2"]
+        .iter()
+        .map(|threads| {
+            let out = dir.join(format!("{threads}.ply"));
+            let json = dir.join(format!("{threads}.json"));
+            let run = capmesh()
+                .args(["--threads", threads, "param", "--quiet", "--multilevel-above", "20000", "--coarse-vertices", "12500"])
+                .arg(&input)
+                .arg("-o")
+                .arg(&out)
+                .arg("--report")
+                .arg(&json)
+                .output()
+                .unwrap();
+            assert!(run.status.success(), "on {threads} threads: {}", String::from_utf8_lossy(&run.stderr));
+            (std::fs::read(&out).unwrap(), serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap())
+        })
+        .collect();
+    assert_eq!(outputs[0].1["multilevel"]["coarse_vertices"], 12500, "{}", outputs[0].1["multilevel"]);
+    assert!(outputs[0].0 == outputs[1].0, "the multilevel map depends on the number of threads");
+}
+
 /// `capmesh metrics --json` has the shape figures (issue 26) beside the earlier keys, the
 /// same report on one and three threads, and a mesh measured against itself has the input's
 /// own self-intersection count and no Hausdorff distance.

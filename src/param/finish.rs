@@ -10,7 +10,7 @@ use crate::cap::stereographic::{inverse_stereographic, stereographic, z_star_of_
 use crate::cap::CapMap;
 use crate::error::Error;
 use crate::linalg::cotangent_weights;
-use crate::mesh::geometry::{folded_faces, lift};
+use crate::mesh::geometry::folded_faces;
 use crate::mesh::topology::within_rings;
 use crate::mesh::{repair, SurfaceKind, TriMesh};
 use crate::metrics::{angle_distortion, area_distortion, conformal_energy, Stats};
@@ -170,11 +170,7 @@ pub(crate) fn conclude(
 
 /// The domain points of planar points ([`cap_point`]).
 fn cap_points(domain: Domain, p: &[[f64; 2]]) -> Vec<[f64; 3]> {
-    if domain == Domain::Disk {
-        lift(p)
-    } else {
-        p.iter().map(|&q| inverse_stereographic(q)).collect()
-    }
+    p.iter().map(|&q| cap_point(domain, q)).collect()
 }
 
 /// The domain point of a planar point: the inverse stereographic projection, or `(x, y, 0)`

@@ -218,7 +218,7 @@ const LEVEL_GROWTH: usize = 2;
 
 /// Area refinement sweeps at each level of the prolongation but the last (which gets
 /// [`super::RefinementOptions::area_refinement`]).
-const LEVEL_SWEEPS: usize = 10;
+const LEVEL_SWEEPS: usize = 5;
 
 /// The sizes of the prolongation's levels between a coarse mesh of `coarse` vertices and the
 /// input's `n`: `coarse` times powers of [`LEVEL_GROWTH`], below `n`.
