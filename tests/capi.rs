@@ -386,6 +386,21 @@ fn refinement_equalization_and_puncture_end_options_are_passed_through() {
     let status = unsafe { capmesh_v1_parameterize(&arrays.view(), &p, None, null_mut(), &mut out, null_mut()) };
     assert_eq!(status, CAPMESH_V1_INVALID_ARGUMENT);
     assert!(last_error().contains("puncture_end = 5"), "{}", last_error());
+    // The multilevel thresholds (issue 27): the bunny subdivided twice (29k vertices) goes
+    // through a decimated copy when asked to, not by default.
+    let fine = capmesh::mesh::subdivide_midpoint(&input, 2);
+    let arrays = Arrays::of(&fine);
+    let p = capmesh_v1_param_options_default();
+    assert_eq!((p.multilevel_above, p.coarse_vertices), (capmesh::param::DEFAULT_MULTILEVEL_ABOVE as u32, capmesh::param::DEFAULT_COARSE_VERTICES as u32));
+    for (above, expected) in [(p.multilevel_above, serde_json::Value::Null), (10_000, serde_json::json!(8000))] {
+        let p = capmesh_v1_param_options { multilevel_above: above, coarse_vertices: 8000, ..p };
+        let mut raw = null_mut();
+        let status = unsafe { capmesh_v1_parameterize(&arrays.view(), &p, None, null_mut(), &mut out, &mut raw) };
+        assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+        take_mesh(out);
+        let report: serde_json::Value = serde_json::from_str(&take_string(raw)).unwrap();
+        assert_eq!(report["multilevel"]["coarse_vertices"].clone(), expected, "multilevel_above {above}: {}", report["multilevel"]);
+    }
 }
 
 /// Share of the faces of `mesh` with an angle below 30 degrees.

@@ -291,6 +291,16 @@ typedef struct capmesh_v1_param_options {
    * One of `CAPMESH_V1_PUNCTURE_*` (closed surfaces). Default best (0).
    */
   int32_t puncture_end;
+  /**
+   * Closed surfaces of more vertices than this are mapped through a decimated copy whose map
+   * is prolonged to every vertex (near-linear time and memory); 0 = never. Default 150000.
+   */
+  uint32_t multilevel_above;
+  /**
+   * Vertices of that decimated copy (at least; an eighth of the input's when more). Default
+   * 50000.
+   */
+  uint32_t coarse_vertices;
 } capmesh_v1_param_options;
 
 /**

@@ -125,7 +125,8 @@ def parameterize(vertices, faces, domain: str = "adaptive", progress: Optional[P
     ``progress(stage, fraction, message)`` is called now and then on the calling thread;
     returning ``False`` cancels (raises :class:`Cancelled`), raising cancels with that
     exception. Options: initial, lambda_, open_lambda, no_lambda_fallback, smoothing,
-    area_refinement, puncture_end, search_sites (see ``capmesh param --help``)."""
+    area_refinement, puncture_end, search_sites, multilevel_above, coarse_vertices (see
+    ``capmesh param --help``)."""
     native, report = _capmesh.parameterize(_vertices(vertices), _faces(faces), domain, progress, **options)
     m = CapMap(native.cap(), native.plane(), _json.loads(report))
     m._native = native

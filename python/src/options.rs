@@ -12,7 +12,18 @@ use pyo3::types::PyDict;
 use crate::errors::input;
 
 /// The parameterization options shared by `parameterize` and `remesh` (the CLI's `MapArgs`).
-pub const MAP_OPTIONS: [&str; 8] = ["initial", "lambda_", "open_lambda", "no_lambda_fallback", "smoothing", "area_refinement", "puncture_end", "search_sites"];
+pub const MAP_OPTIONS: [&str; 10] = [
+    "initial",
+    "lambda_",
+    "open_lambda",
+    "no_lambda_fallback",
+    "smoothing",
+    "area_refinement",
+    "puncture_end",
+    "search_sites",
+    "multilevel_above",
+    "coarse_vertices",
+];
 /// The options of `remesh` only.
 pub const REMESH_OPTIONS: [&str; 10] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "area_steps", "shape_weight", "no_resample", "sizing", "keep_creases", "placement"];
 
@@ -40,6 +51,8 @@ fn set_map_option(options: &mut ParamOptions, name: &str, value: &Bound<'_, PyAn
         "area_refinement" => options.refinement.area_refinement = number(name, value)?,
         "puncture_end" => options.closed.puncture_end = parsed::<PunctureEnd>(value)?,
         "search_sites" => options.search.sites = number(name, value)?,
+        "multilevel_above" => options.closed.multilevel_above = number(name, value)?,
+        "coarse_vertices" => options.closed.coarse_vertices = number(name, value)?,
         _ => return Ok(false),
     }
     Ok(true)

@@ -91,6 +91,21 @@ def test_lat_long_grid_and_options():
     assert len(rf) == rep["quality"]["faces"] > 100
 
 
+def test_multilevel_options_match_the_cli(cli, tmp_path):
+    # Thresholds lowered so that the bundled closed mesh takes the multilevel path (issue 27).
+    args = ["--multilevel-above", 1000, "--coarse-vertices", 700]
+    out, report = tmp_path / "cap.obj", tmp_path / "param.json"
+    done = cli("param", CLOSED_MESH, "-o", out, "--report", report, "--quiet", *args)
+    assert done.returncode == 0, done.stderr
+    expected = json.loads(report.read_text())
+    assert expected["multilevel"]["coarse_vertices"] == 700
+    v, f = capmesh.read_mesh(CLOSED_MESH)
+    m = capmesh.parameterize(v, f, multilevel_above=1000, coarse_vertices=700)
+    assert m.report["multilevel"] == expected["multilevel"] | {k: m.report["multilevel"][k] for k in ("decimate_seconds", "coarse_seconds", "prolong_seconds")}
+    assert m.report["area_distortion"] == expected["area_distortion"]
+    assert capmesh.parameterize(v, f).report["multilevel"] is None
+
+
 @pytest.mark.parametrize("vdtype", [np.float32, np.float64])
 @pytest.mark.parametrize("fdtype", [np.int32, np.int64, np.uint32])
 def test_dtypes(vdtype, fdtype):

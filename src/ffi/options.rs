@@ -1,7 +1,7 @@
 //! Option structs of the C ABI, their defaults and their conversion to the library's options.
 
 use super::status::Failure;
-use crate::param::{PunctureEnd, DEFAULT_AREA_REFINEMENT};
+use crate::param::{PunctureEnd, DEFAULT_AREA_REFINEMENT, DEFAULT_COARSE_VERTICES, DEFAULT_MULTILEVEL_ABOVE};
 use crate::cap::Domain;
 use crate::param::ParamOptions;
 use crate::refine::Smoothing;
@@ -72,6 +72,12 @@ pub struct capmesh_v1_param_options {
     pub area_refinement: u32,
     /// One of `CAPMESH_V1_PUNCTURE_*` (closed surfaces). Default best (0).
     pub puncture_end: i32,
+    /// Closed surfaces of more vertices than this are mapped through a decimated copy whose map
+    /// is prolonged to every vertex (near-linear time and memory); 0 = never. Default 150000.
+    pub multilevel_above: u32,
+    /// Vertices of that decimated copy (at least; an eighth of the input's when more). Default
+    /// 50000.
+    pub coarse_vertices: u32,
 }
 
 /// Remeshing options. Start from `capmesh_v1_remesh_options_default()`.
@@ -132,6 +138,8 @@ pub extern "C" fn capmesh_v1_param_options_default() -> capmesh_v1_param_options
         smoothing: -1.0,
         area_refinement: DEFAULT_AREA_REFINEMENT as u32,
         puncture_end: CAPMESH_V1_PUNCTURE_BEST,
+        multilevel_above: DEFAULT_MULTILEVEL_ABOVE as u32,
+        coarse_vertices: DEFAULT_COARSE_VERTICES as u32,
     }
 }
 
@@ -209,6 +217,8 @@ pub(crate) fn param_options(o: &capmesh_v1_param_options) -> Result<ParamOptions
     options.closed.puncture_end = puncture_end;
     options.refinement.smoothing = smoothing;
     options.refinement.area_refinement = o.area_refinement as usize;
+    options.closed.multilevel_above = o.multilevel_above as usize;
+    options.closed.coarse_vertices = o.coarse_vertices as usize;
     Ok(options)
 }
 
