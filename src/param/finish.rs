@@ -67,7 +67,7 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         }
     };
     let transport_seconds = search_seconds + t_ot.elapsed().as_secs_f64();
-    let to_cap = |p: &[[f64; 2]]| cap_points(options.domain, p);
+    let to_cap = |q: [f64; 2]| cap_point(options.domain, q);
     let t_reg = Instant::now();
     let cot = cotangent_weights(&work.vertices, &faces);
     let held = if kind == SurfaceKind::ClosedSphere { within_rings(&on_boundary, &faces, PUNCTURE_HELD_RINGS) } else { on_boundary.clone() };

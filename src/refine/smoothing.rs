@@ -11,6 +11,7 @@
 //! Large systems are solved by conjugate gradients from the centroids
 //! ([`ITERATIVE_UNKNOWNS`]), the others (and any whose gradients stall) by sparse Cholesky.
 
+use super::area_refine::{refine_areas, RefineOptions};
 use crate::omt::planar_transport::TransportMap;
 use super::untangle::{untangle, untangle_locally, PendingRepair, UntangleReport};
 use crate::linalg::{jacobi_cg2, CotanWeights, SolveError, SpdSolver};
@@ -169,7 +170,8 @@ pub const ITERATIVE_MAX_ITERATIONS: usize = 300;
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Smoothing {
     /// Walk the grid `AUTO_KAPPAS` (0 included) from `kappa = 1` towards smaller measured
-    /// mean `|d_area|` after fold repair, and keep the grid's local minimum. The default.
+    /// mean `|d_area|` after fold repair and 4 sweeps of area refinement on a copy, and keep
+    /// the grid's local minimum (docs/method.md section 8). The default.
     #[default]
     Auto,
     /// A fixed `kappa` (0 is the paper's plain centroid map).
@@ -198,7 +200,9 @@ pub const AUTO_KAPPAS: [f64; 7] = [0.0, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0];
 pub struct SmoothingTrial {
     /// Strength.
     pub kappa: f64,
-    /// Mean `|d_area|` on the cap after fold repair.
+    /// Mean `|d_area|` on the cap after fold repair and, when no fold is left and the strength
+    /// was searched ([`Smoothing::Auto`]), 4 sweeps of area refinement on a copy (the
+    /// candidates' score).
     pub mean_abs_area_distortion: f64,
     /// Folded faces before repair.
     pub folded_before_repair: usize,
@@ -232,12 +236,22 @@ pub struct SmoothedMap {
 /// every `kappa > 0` collapsed without it. Open surfaces hold none: the hippocampal sheet lost (0.0219 -> 0.0235).
 pub const PUNCTURE_HELD_RINGS: usize = 3;
 
-/// Lifts planar positions onto the domain where areas are measured (the cap or the disk).
-pub type ToDomain<'a> = dyn Fn(&[[f64; 2]]) -> Vec<[f64; 3]> + Sync + 'a;
+/// Lifts a planar point onto the domain where areas are measured (the cap or the disk).
+pub type ToDomain<'a> = dyn Fn([f64; 2]) -> [f64; 3] + Sync + 'a;
+
+/// Sweeps of the area refinement ([`super::area_refine`]) a candidate of [`Smoothing::Auto`]
+/// is scored after: the refinement that follows removes the noise of a weakly smoothed map
+/// but not the broad area error a strong Dirichlet term leaves, so the candidates are ranked
+/// by what the refinement leaves them. Scored before it, the search kept `kappa = 10` on a
+/// 60k marching-cubes ellipsoid (final mean |d_area| 0.0041; `kappa = 3`: 0.0029) and on its
+/// 519k copy's decimated level (0.0076 after prolongation; `kappa = 1`: 0.0054), `kappa = 3`
+/// on the lung lobe (0.0184; `kappa = 1`: 0.0148) (docs/method.md, "Smoothing").
+pub(crate) const SCORE_SWEEPS: usize = 4;
 
 /// Smooth the transport map `map` of the surface `(vertices, faces)`, repair its folds
 /// and keep the candidate with no fold left and the smallest mean `|d_area|` measured on the
-/// domain (`to_domain` lifts planar positions onto the cap or the planar disk). `fixed`
+/// domain after [`SCORE_SWEEPS`] sweeps of area refinement (`to_domain` lifts planar points
+/// onto the cap or the planar disk). `fixed`
 /// vertices (the boundary) never move; `held` vertices (a superset, see
 /// [`PUNCTURE_HELD_RINGS`]) are not smoothed but the fold repair may move them.
 /// The candidates are independent and evaluated in parallel.
@@ -264,20 +278,21 @@ pub fn smooth_centroid_map(
             Ok(rep) => (rep, None),
             Err(pending) => (pending.report_so_far(&p, radius), Some(pending)),
         };
-        Ok(Candidate::new(kappa, p, rep, pending, vertices, faces, to_domain))
+        Ok(Candidate::new(kappa, p, rep, pending, vertices, faces, fixed, to_domain, SCORE_SWEEPS))
     };
     // The convex-combination solves of a candidate its local repair left folded.
     let finish = |c: &mut Candidate| {
         if let Some(pending) = c.pending.take() {
             let rep = pending.finish(&mut c.kept.positions, faces, fixed, radius);
-            *c = Candidate::new(c.kept.kappa, std::mem::take(&mut c.kept.positions), rep, None, vertices, faces, to_domain);
+            *c = Candidate::new(c.kept.kappa, std::mem::take(&mut c.kept.positions), rep, None, vertices, faces, fixed, to_domain, SCORE_SWEEPS);
         }
     };
     let mut done: Vec<Candidate> = match smoothing {
         Smoothing::Fixed(k) => {
             let mut p = primed.clone().smooth(&map.centroids, &map.masses, k)?;
             let rep = untangle(&mut p, faces, fixed, radius);
-            vec![Candidate::new(k, p, rep, None, vertices, faces, to_domain)]
+            // One candidate: nothing to rank, measured as it is.
+            vec![Candidate::new(k, p, rep, None, vertices, faces, fixed, to_domain, 0)]
         }
         Smoothing::Auto => walk_grid(&evaluate, &finish)?,
     };
@@ -369,9 +384,20 @@ struct Candidate {
 
 impl Candidate {
     /// The candidate of strength `kappa` at planar positions `p` after the repair `rep`,
-    /// measured on the domain.
-    fn new(kappa: f64, p: Vec<[f64; 2]>, rep: UntangleReport, pending: Option<PendingRepair>, vertices: &[[f64; 3]], faces: &[[u32; 3]], to_domain: &ToDomain<'_>) -> Self {
-        let d = Stats::of(area_distortion(vertices, &to_domain(&p), faces)).mean_abs;
+    /// measured on the domain after `score_sweeps` sweeps of area refinement on a copy.
+    #[allow(clippy::too_many_arguments)]
+    fn new(kappa: f64, p: Vec<[f64; 2]>, rep: UntangleReport, pending: Option<PendingRepair>, vertices: &[[f64; 3]], faces: &[[u32; 3]], fixed: &[bool], to_domain: &ToDomain<'_>, score_sweeps: usize) -> Self {
+        // A folded candidate is not refined (the refinement keeps orientations, it does not
+        // repair them): it ranks behind every fold-free one anyway.
+        let scored = if rep.folded_after == 0 && score_sweeps > 0 {
+            let mut q = p.clone();
+            refine_areas(&mut q, vertices, faces, fixed, to_domain, RefineOptions::default().with_sweeps(score_sweeps));
+            q
+        } else {
+            p.clone()
+        };
+        let lifted: Vec<[f64; 3]> = scored.iter().map(|&q| to_domain(q)).collect();
+        let d = Stats::of(area_distortion(vertices, &lifted, faces)).mean_abs;
         let trial = SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before, folded_after_repair: rep.folded_after };
         Self { key: (rep.folded_after > 0, d), trial, kept: SmoothedMap { kappa, positions: p, untangle: rep, trials: Vec::new() }, pending }
     }
