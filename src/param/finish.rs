@@ -11,13 +11,14 @@ use crate::cap::CapMap;
 use crate::error::Error;
 use crate::linalg::cotangent_weights;
 use crate::mesh::geometry::folded_faces;
+use crate::mesh::topology::within_rings;
 use crate::mesh::{repair, SurfaceKind, TriMesh};
 use crate::metrics::{angle_distortion, area_distortion, conformal_energy, Stats};
 use crate::omt::planar_transport::PlanarTransport;
 use crate::omt::OmtError;
 use crate::progress::{self, Progress, Stage};
 use crate::refine::area_refine::{refine_areas, RefineOptions};
-use crate::refine::smoothing::{held_near_puncture, smooth_centroid_map};
+use crate::refine::smoothing::{smooth_centroid_map, PUNCTURE_HELD_RINGS};
 use std::time::Instant;
 
 /// [`super::parameterize`] of the prepared `mesh` with the puncture end fixed by
@@ -69,7 +70,7 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
     let to_cap = |q: [f64; 2]| cap_point(options.domain, q);
     let t_reg = Instant::now();
     let cot = cotangent_weights(&work.vertices, &faces);
-    let held = if kind == SurfaceKind::ClosedSphere { held_near_puncture(&on_boundary, &faces, &transported.centroids, options.hold_outer_disk.then_some(radius)) } else { on_boundary.clone() };
+    let held = if kind == SurfaceKind::ClosedSphere { within_rings(&on_boundary, &faces, PUNCTURE_HELD_RINGS) } else { on_boundary.clone() };
     let chosen = smooth_centroid_map(&transported, &work.vertices, &faces, &cot, &on_boundary, &held, radius, options.refinement.smoothing, &to_cap).map_err(OmtError::Linear)?;
     let (kappa, plane, untangle_report, trials) = (chosen.kappa, chosen.positions, chosen.untangle, chosen.trials);
     let smoothing_seconds = t_reg.elapsed().as_secs_f64();

@@ -98,7 +98,6 @@ pub(crate) fn parameterize_multilevel(mesh: &TriMesh, prepared: &Prepared, optio
     let mut coarse_options = options.clone();
     coarse_options.vertex_masses = Some(std::sync::Arc::new(fine_of_coarse.iter().map(|&v| masses[v as usize]).collect()));
     coarse_options.closed.flatten.puncture.given = Some(given);
-    coarse_options.hold_outer_disk = true;
     coarse_options.closed.multilevel_above = 0;
     let t_coarse = Instant::now();
     let coarse_map = super::parameterize_with_fallbacks(&coarse, &coarse_options, progress)?;

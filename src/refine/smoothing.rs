@@ -236,30 +236,6 @@ pub struct SmoothedMap {
 /// every `kappa > 0` collapsed without it. Open surfaces hold none: the hippocampal sheet lost (0.0219 -> 0.0235).
 pub const PUNCTURE_HELD_RINGS: usize = 3;
 
-/// On the decimated copy of a multilevel map (docs/method.md departure 20), a closed
-/// surface's vertices whose centroid lies farther from the disk's centre than this fraction
-/// of its radius are held besides [`PUNCTURE_HELD_RINGS`]: the rings are a count, and the
-/// copy is graded dense around the puncture, where three rings cover a small part of the
-/// outer disk. On the 519k marching-cubes surface's 65k copy the map alone went 0.0067 ->
-/// 0.0050 (the whole multilevel map 0.0060 -> 0.0051); with 16 rings instead 0.0051. On the
-/// one-level maps of the closed shared meshes it changed mean |d_area| by 0 to +0.0002 (48k
-/// brain) but moved their remeshes (the closed hippocampus at 3000 faces kept a 12.5-degree
-/// face): one-level maps hold the rings only (docs/method.md section 8).
-pub const PUNCTURE_HELD_RADIUS: f64 = 0.5;
-
-/// The vertices the smoothing holds at their centroids on a closed surface: within
-/// [`PUNCTURE_HELD_RINGS`] of the punctured quad (`on_boundary`), and, given the disk's
-/// `radius`, those with the centroid beyond [`PUNCTURE_HELD_RADIUS`] of it.
-pub(crate) fn held_near_puncture(on_boundary: &[bool], faces: &[[u32; 3]], centroids: &[[f64; 2]], radius: Option<f64>) -> Vec<bool> {
-    let mut held = crate::mesh::topology::within_rings(on_boundary, faces, PUNCTURE_HELD_RINGS);
-    let Some(radius) = radius else { return held };
-    let outer = PUNCTURE_HELD_RADIUS * radius;
-    for (h, c) in held.iter_mut().zip(centroids) {
-        *h |= c[0] * c[0] + c[1] * c[1] > outer * outer;
-    }
-    held
-}
-
 /// Lifts a planar point onto the domain where areas are measured (the cap or the disk).
 pub type ToDomain<'a> = dyn Fn([f64; 2]) -> [f64; 3] + Sync + 'a;
 
@@ -413,14 +389,13 @@ impl Candidate {
     fn new(kappa: f64, p: Vec<[f64; 2]>, rep: UntangleReport, pending: Option<PendingRepair>, vertices: &[[f64; 3]], faces: &[[u32; 3]], fixed: &[bool], to_domain: &ToDomain<'_>, score_sweeps: usize) -> Self {
         // A folded candidate is not refined (the refinement keeps orientations, it does not
         // repair them): it ranks behind every fold-free one anyway.
-        let scored = if rep.folded_after == 0 && score_sweeps > 0 {
+        let lifted: Vec<[f64; 3]> = if rep.folded_after == 0 && score_sweeps > 0 {
             let mut q = p.clone();
             refine_areas(&mut q, vertices, faces, fixed, to_domain, RefineOptions::default().with_sweeps(score_sweeps));
-            q
+            q.iter().map(|&x| to_domain(x)).collect()
         } else {
-            p.clone()
+            p.iter().map(|&x| to_domain(x)).collect()
         };
-        let lifted: Vec<[f64; 3]> = scored.iter().map(|&q| to_domain(q)).collect();
         let d = Stats::of(area_distortion(vertices, &lifted, faces)).mean_abs;
         let trial = SmoothingTrial { kappa, mean_abs_area_distortion: d, folded_before_repair: rep.folded_before, folded_after_repair: rep.folded_after };
         Self { key: (rep.folded_after > 0, d), trial, kept: SmoothedMap { kappa, positions: p, untangle: rep, trials: Vec::new() }, pending }

@@ -54,10 +54,6 @@ pub struct ParamOptions {
     /// its faces' areas): the fine surface's area each vertex of a decimated copy stands for
     /// (`crate::param::multilevel`). Default `None`.
     pub(crate) vertex_masses: Option<std::sync::Arc<Vec<f64>>>,
-    /// Whether the smoothing of a closed surface's centroid map also holds the vertices in the
-    /// outer half of the disk ([`crate::refine::smoothing`]'s `PUNCTURE_HELD_RADIUS`): set for
-    /// the multilevel map's copy, graded dense around the puncture. Default `false`.
-    pub(crate) hold_outer_disk: bool,
 }
 
 impl Default for ParamOptions {
@@ -71,7 +67,6 @@ impl Default for ParamOptions {
             search: SearchOptions::default(),
             refinement: RefinementOptions::default(),
             vertex_masses: None,
-            hold_outer_disk: false,
         }
     }
 }
