@@ -289,9 +289,7 @@ pub fn remove_duplicate_faces(mesh: &TriMesh) -> Option<Deduplicated> {
     let mut seen: FastMap<[u32; 3], ()> = FastMap::default();
     let mut faces = Vec::with_capacity(mesh.n_faces());
     for (t, f) in mesh.faces.iter().enumerate() {
-        let mut k = *f;
-        k.sort_unstable();
-        if seen.insert(k, ()).is_none() {
+        if seen.insert(super::topology::sorted_face(*f), ()).is_none() {
             faces.push(t as u32);
         }
     }

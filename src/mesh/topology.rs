@@ -142,18 +142,16 @@ pub(crate) fn check_degenerate(mesh: &TriMesh) -> Result<(), MeshError> {
     Ok(())
 }
 
+/// A face's vertices in increasing order: the same key for the same triangle in any winding.
+pub(crate) fn sorted_face(face: [u32; 3]) -> [u32; 3] {
+    let mut k = face;
+    k.sort_unstable();
+    k
+}
+
 /// [`MeshError::DuplicateFace`] for the duplicate with the smallest face index.
 pub(crate) fn check_duplicates(mesh: &TriMesh) -> Result<(), MeshError> {
-    let mut keyed: Vec<([u32; 3], u32)> = mesh
-        .faces
-        .iter()
-        .enumerate()
-        .map(|(f, face)| {
-            let mut k = *face;
-            k.sort_unstable();
-            (k, f as u32)
-        })
-        .collect();
+    let mut keyed: Vec<([u32; 3], u32)> = mesh.faces.iter().enumerate().map(|(f, &face)| (sorted_face(face), f as u32)).collect();
     keyed.sort_unstable();
     // (later face, first face) with the smallest later face over all groups of equal faces.
     let mut worst: Option<(usize, usize)> = None;

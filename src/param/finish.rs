@@ -11,6 +11,7 @@ use crate::cap::CapMap;
 use crate::error::Error;
 use crate::linalg::cotangent_weights;
 use crate::mesh::geometry::folded_faces;
+use crate::mesh::topology::sorted_face;
 use crate::mesh::topology::within_rings;
 use crate::mesh::{repair, SurfaceKind, TriMesh};
 use crate::metrics::{angle_distortion, area_distortion, conformal_energy, Stats};
@@ -153,13 +154,8 @@ pub(crate) fn conclude(
     let cap_all = welded.old_to_new.iter().map(|&v| cap_work.get(v as usize).copied().unwrap_or([0.0; 3])).collect();
     let bottom_faces = match &report.puncture {
         Some(p) => {
-            let key = |f: [u32; 3]| {
-                let mut k = f;
-                k.sort_unstable();
-                k
-            };
-            let quad: Vec<[u32; 3]> = p.faces.iter().map(|&f| key(work.faces[f])).collect();
-            (0..mesh.n_faces()).filter(|&f| quad.contains(&key(mesh.faces[f].map(|v| welded.old_to_new.get(v as usize).copied().unwrap_or(repair::REMOVED))))).collect()
+            let quad: Vec<[u32; 3]> = p.faces.iter().map(|&f| sorted_face(work.faces[f])).collect();
+            (0..mesh.n_faces()).filter(|&f| quad.contains(&sorted_face(mesh.faces[f].map(|v| welded.old_to_new.get(v as usize).copied().unwrap_or(repair::REMOVED))))).collect()
         }
         None => Vec::new(),
     };

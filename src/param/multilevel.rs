@@ -28,7 +28,7 @@ use crate::flatten::puncture::{choose_puncture, Puncture};
 use crate::flatten::FlattenError;
 use crate::mesh::decimate::{decimate, Hierarchy};
 use crate::mesh::geometry::{folded_faces, norm, signed_area_2d, sub, triangle_area, vertex_areas};
-use crate::mesh::topology::edge_faces;
+use crate::mesh::topology::{edge_faces, sorted_face};
 use crate::mesh::{SurfaceKind, TriMesh};
 use crate::progress::{self, Progress, Stage};
 use crate::refine::area_refine::{refine_towards, RefineOptions};
@@ -241,18 +241,13 @@ fn refine_level(
     on_boundary: &[bool],
     lift: &(dyn Fn([f64; 2]) -> [f64; 3] + Sync),
 ) {
-    let key = |t: [u32; 3]| {
-        let mut k = t;
-        k.sort_unstable();
-        k
-    };
-    let skip = punctured.map(key);
+    let skip = punctured.map(sorted_face);
     let global: Vec<u32> = (0..present.len() as u32).filter(|&v| present[v as usize]).collect();
     let mut local = vec![u32::MAX; present.len()];
     for (i, &v) in global.iter().enumerate() {
         local[v as usize] = i as u32;
     }
-    let level_faces: Vec<[u32; 3]> = faces.iter().filter(|t| !skip.contains(&key(**t))).map(|t| t.map(|v| local[v as usize])).collect();
+    let level_faces: Vec<[u32; 3]> = faces.iter().filter(|t| !skip.contains(&sorted_face(**t))).map(|t| t.map(|v| local[v as usize])).collect();
     let mut level_plane: Vec<[f64; 2]> = global.iter().map(|&v| plane[v as usize]).collect();
     let level_vertices: Vec<[f64; 3]> = global.iter().map(|&v| vertices[v as usize]).collect();
     let fixed: Vec<bool> = global.iter().map(|&v| on_boundary[v as usize]).collect();

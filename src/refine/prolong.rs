@@ -11,7 +11,7 @@
 //! every face is positively oriented after every insertion: the prolonged map folds no face.
 
 use crate::mesh::decimate::{Collapse, Hierarchy};
-use crate::mesh::geometry::{dot, norm, sub};
+use crate::mesh::geometry::{dot, norm, signed_area_2d, sub};
 
 /// What the prolongation did.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
@@ -62,7 +62,7 @@ pub(crate) fn prolong(
         let star = hierarchy.star(c);
         report.inserted += 1;
         let candidate = mean_value_point(plane, vertices, c.removed, star, domain, &mut weights);
-        let sees = |p: [f64; 2]| star.iter().all(|&[a, b]| orientation * signed(p, plane[a as usize], plane[b as usize]) > 0.0);
+        let sees = |p: [f64; 2]| star.iter().all(|&[a, b]| orientation * signed_area_2d(p, plane[a as usize], plane[b as usize]) > 0.0);
         let position = if sees(candidate) {
             Some(candidate)
         } else {
@@ -195,7 +195,7 @@ fn towards_kept(
 /// 1, 1/2, 1/4 and 1/8 of the way that does): a point found near the kept vertex leaves thin
 /// faces that the vertices put back later would have to be fitted into.
 fn widened(plane: &[[f64; 2]], star: &[[u32; 2]], p: [f64; 2], orientation: f64) -> [f64; 2] {
-    let smallest = |q: [f64; 2]| star.iter().map(|&[a, b]| orientation * signed(q, plane[a as usize], plane[b as usize])).fold(f64::INFINITY, f64::min);
+    let smallest = |q: [f64; 2]| star.iter().map(|&[a, b]| orientation * signed_area_2d(q, plane[a as usize], plane[b as usize])).fold(f64::INFINITY, f64::min);
     let k = star.len() as f64;
     let g = star.iter().fold([0.0, 0.0], |s, &[a, _]| [s[0] + plane[a as usize][0] / k, s[1] + plane[a as usize][1] / k]);
     let (mut p, mut worst) = (p, smallest(p));
@@ -214,11 +214,6 @@ fn widened(plane: &[[f64; 2]], star: &[[u32; 2]], p: [f64; 2], orientation: f64)
 
 /// Steps of [`widened`].
 const WIDEN_STEPS: usize = 4;
-
-/// Twice the signed area of the planar triangle `(p, a, b)`.
-fn signed(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - p[0]) * (b[1] - p[1]) - (a[1] - p[1]) * (b[0] - p[0])
-}
 
 /// The mean value weights of `v` in its 3-D `star` (faces `(v, a, b)`), unnormalised, one
 /// entry per face corner (a neighbour appears once per face it shares with `v`): the weight
