@@ -11,8 +11,7 @@ use crate::cap::CapMap;
 use crate::error::Error;
 use crate::linalg::cotangent_weights;
 use crate::mesh::geometry::folded_faces;
-use crate::mesh::topology::sorted_face;
-use crate::mesh::topology::within_rings;
+use crate::mesh::topology::{sorted_face, within_rings};
 use crate::mesh::{repair, SurfaceKind, TriMesh};
 use crate::metrics::{angle_distortion, area_distortion, conformal_energy, Stats};
 use crate::omt::planar_transport::PlanarTransport;
@@ -133,14 +132,13 @@ pub(crate) fn conclude(
     let Prepared { start, welded, .. } = prepared;
     let work = &welded.mesh;
     let faces = faces.to_vec();
-    let to_cap = |p: &[[f64; 2]]| cap_points(options.domain, p);
     let lift_one = |q: [f64; 2]| cap_point(options.domain, q);
     progress::check(progress, Stage::Project, 0.0, "area refinement")?;
     let t_refine = Instant::now();
     report.area_refinement = refine_areas(&mut plane, &work.vertices, &faces, on_boundary, &lift_one, RefineOptions::default().with_sweeps(options.refinement.area_refinement));
     report.refine_seconds = t_refine.elapsed().as_secs_f64();
     progress::check(progress, Stage::Project, 0.0, "inverse stereographic projection")?;
-    let cap_work = to_cap(&plane);
+    let cap_work: Vec<[f64; 3]> = plane.iter().map(|&q| lift_one(q)).collect();
     report.flipped_faces = folded_faces(&plane, &faces).len();
     let d_area = area_distortion(&work.vertices, &cap_work, &faces);
     let d_angle = angle_distortion(&work.vertices, &cap_work, &faces);
@@ -162,11 +160,6 @@ pub(crate) fn conclude(
     let input_faces = measured_input_faces(mesh, &welded.old_to_new, report.puncture.as_ref().map(|p| p.faces));
     let (face_area_distortion, corner_angle_distortion) = per_input_face(mesh.n_faces(), &input_faces, &d_area, &d_angle);
     Ok(CapMap { plane: plane_all, cap: cap_all, bottom_faces, face_area_distortion, corner_angle_distortion, kind: report.kind, report })
-}
-
-/// The domain points of planar points ([`cap_point`]).
-fn cap_points(domain: Domain, p: &[[f64; 2]]) -> Vec<[f64; 3]> {
-    p.iter().map(|&q| cap_point(domain, q)).collect()
 }
 
 /// The domain point of a planar point: the inverse stereographic projection, or `(x, y, 0)`
