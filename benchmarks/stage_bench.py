@@ -13,9 +13,9 @@ benchmarks/stage_bench.sh, which builds capmesh and the synthetic meshes.
 
 `--scale` (issue 27) runs only the growth series instead: the 12k and 48k brains of tests/data,
 each midpoint-subdivided once and twice (50k, 194k, 776k vertices: the same surfaces, so the
-same map is expected), and a 1M-vertex closed surface (the bumpy ellipsoid on the geodesic
-sphere), once each without MeshLab, then the three largest again at one level
-(`--multilevel-above 0`); it writes the stage times, peak RSS, mean |d_area| and the
+same map is expected), a folded (cortex-like) closed surface of 131k vertices and a 1M-vertex
+closed surface (the bumpy ellipsoid on the geodesic sphere), once each without MeshLab, then
+the 131k, 194k, 776k and 1M cases again at one level (`--multilevel-above 0`); it writes the stage times, peak RSS, mean |d_area| and the
 fitted growth exponent of each stage (least squares of log time on log V over the 48k brain's
 series) to benchmarks/results/stage_bench_scale.{md,json}. `--max-vertices N` leaves out the
 subdivided and synthetic cases above N vertices (the bundled brains always run; on a shared
@@ -273,13 +273,14 @@ def write_scale_report(rows, info, series):
         + (f" (load average {load[0]:.1f} at the start, {load[1]:.1f} at the end on {info['cores']} cores)" if load else "")
         + ": the seconds are wall time under that load and vary from run to run; CPU seconds (user + system) of the whole process are given beside them.",
         "Subdivided meshes are the same surface (midpoint 1:4 split, `synth_mesh subdivide`), so their mean |d_area| should match the coarse one's.",
-        "Closed surfaces above 150k vertices are mapped through a decimated copy by default (`--multilevel-above`, docs/method.md section 20): "
+        "Closed surfaces above 100k vertices are mapped through a decimated copy by default (`--multilevel-above`, docs/method.md section 20): "
         "`path` says how, `decimate` and `prolong` are that path's own stages, and the flatten, transport and regularise columns are then the decimated copy's; "
         "the rows marked `one level` are the same meshes with `--multilevel-above 0`, run in the same session for the ratios. "
         "For the multilevel rows `folds before repair` counts the faces the prolongation folded (the copy's own repair is in its report).",
         "`param+remesh` is the parameterization, pull-back, shape stage and equalization (no quality metrics, no file I/O).",
         "Peak RSS is the whole process's (the report has no per-stage memory).",
-        "Targets (issue 27): time(776k) / time(194k) <= 5 for param+remesh, 1M under 60 s and 4 GiB, 48k brain under 1 s.",
+        "Targets (issue 27): time(776k) / time(194k) <= 5 for param+remesh, 1M under 60 s and 4 GiB, 131k-class closed surfaces under 4 s, 48k brain under 1 s.",
+        "The folded 131k surface (`synth_mesh folded`) stands for a cortex of that size (gyri and sulci on a regular triangulation).",
         "",
         "| mesh | V | path | decimate | flatten | transport | regularise | prolong | refine | pull-back | shape | param+remesh | CPU s | peak RSS MiB | mean \\|d_area\\| | folds before repair | lambda fallbacks |",
         "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
@@ -302,7 +303,7 @@ def write_scale_report(rows, info, series):
     a, b = ok.get("closed_brain_choi x2"), ok.get("closed_brain_choi x1")
     if a and b:
         lines.append(f"time(776k) / time(194k), param+remesh: {a['param_remesh'] / b['param_remesh']:.2f} (target <= 5); CPU seconds: {a['cpu_seconds'] / b['cpu_seconds']:.2f}.")
-    for n in ["closed_brain_choi x1", "closed_brain_choi x2", "synthetic closed ellipsoid 1m"]:
+    for n in ["synthetic folded 131k", "closed_brain_choi x1", "closed_brain_choi x2", "synthetic closed ellipsoid 1m"]:
         m, one = ok.get(n), ok.get(n + " one level")
         if m and one:
             lines.append(f"{n}: param+remesh {m['param_remesh']:.1f} s against {one['param_remesh']:.1f} s at one level ({one['param_remesh'] / m['param_remesh']:.1f}x), "
@@ -315,6 +316,9 @@ def write_scale_report(rows, info, series):
     if m:
         met = m["param_remesh"] <= 60 and m["peak_rss_mib"] <= 4096
         lines.append(f"1M closed surface: {m['param_remesh']:.1f} s, {m['peak_rss_mib']:.0f} MiB peak ({'met' if met else 'not met'}: 60 s, 4 GiB).")
+    f = ok.get("synthetic folded 131k")
+    if f:
+        lines.append(f"131k-class (folded 131k): param {f['param']:.2f} s, param+remesh {f['param_remesh']:.2f} s wall ({'met' if f['param'] <= 4 else 'not met'} for the map: 4 s).")
     br = ok.get("closed_brain_choi")
     if br:
         lines.append(f"48k brain: param {br['param']:.2f} s wall, {fmt(br.get('cpu_seconds'), 1)} CPU s for the whole process ({'met' if br['param'] <= 1 else 'not met'}: 1 s).")
@@ -356,6 +360,10 @@ def scale(args):
             path = os.path.join(work, f"{name}_x{k}.ply")
             subprocess.run([SYNTH, "subdivide", str(k), src, path], check=True, stdout=subprocess.DEVNULL)
             cases.append((f"{name} x{k}", path))
+    if fits("synthetic folded 131k", 131000):
+        path = os.path.join(work, "synthetic_folded_131k.ply")
+        subprocess.run([SYNTH, "folded", "131000", path], check=True, stdout=subprocess.DEVNULL)
+        cases.append(("synthetic folded 131k", path))
     if fits("synthetic closed ellipsoid 1m", 1000000):
         path = os.path.join(work, "synthetic_closed_1m.ply")
         subprocess.run([SYNTH, "geodesic", "1000000", path], check=True, stdout=subprocess.DEVNULL)
@@ -368,7 +376,7 @@ def scale(args):
     info["cases"] = [(n, os.path.basename(p)) for n, p in cases]
     # The largest cases again at one level (the pipeline before the multilevel path), for the
     # side-by-side ratios.
-    cases += [(n + " one level", p) for n, p in cases if n in ("closed_brain_choi x1", "closed_brain_choi x2", "synthetic closed ellipsoid 1m")]
+    cases += [(n + " one level", p) for n, p in cases if n in ("synthetic folded 131k", "closed_brain_choi x1", "closed_brain_choi x2", "synthetic closed ellipsoid 1m")]
     rows = []
     for name, path in cases:
         print(f"{name}: capmesh ...", flush=True)

@@ -6,13 +6,16 @@
 //!   vertices) with radius `1 + 0.08 sin(5x) sin(4y) sin(3z)` and axes (1, 0.7, 1.4);
 //! * `geodesic N`: the same ellipsoid on the geodesic sphere of about N vertices
 //!   (`10 f^2 + 2`, frequency `f` the nearest to `sqrt((N - 2) / 10)`);
+//! * `folded N`: a folded (cortex-like) closed surface on that geodesic sphere
+//!   ([`capmesh::mesh::shapes::folded_sphere`]; before its axes, half the faces of the 130k
+//!   one tilted by more than 29 degrees from the sphere, a tenth by more than 45);
 //! * `subdivide K IN OUT`: the mesh IN midpoint-subdivided K times
 //!   ([`capmesh::mesh::subdivide_midpoint`], the same surface with `4^K` times the faces).
 //!
 //! `cargo run --release --example synth_mesh -- open 100000 out.ply`
 
 use capmesh::io::{read_mesh, write_mesh};
-use capmesh::mesh::shapes::{geodesic_sphere, grid_disk, icosphere};
+use capmesh::mesh::shapes::{folded_sphere, geodesic_sphere, grid_disk, icosphere};
 use capmesh::mesh::subdivide_midpoint;
 use std::path::Path;
 
@@ -24,7 +27,7 @@ fn main() {
         return subdivide(&args[2], Path::new(&input), Path::new(&args[3]));
     }
     if args.len() != 4 {
-        eprintln!("usage: synth_mesh open N OUT | closed SUBDIVISIONS OUT | geodesic N OUT | subdivide K IN OUT");
+        eprintln!("usage: synth_mesh open N OUT | closed SUBDIVISIONS OUT | geodesic N OUT | folded N OUT | subdivide K IN OUT");
         std::process::exit(2);
     }
     let size: usize = args[2].parse().unwrap_or_else(|_| {
@@ -43,8 +46,9 @@ fn main() {
         }
         "closed" => bumpy_ellipsoid(icosphere(size)),
         "geodesic" => bumpy_ellipsoid(geodesic_sphere((((size.max(12) - 2) as f64 / 10.0).sqrt().round() as usize).max(1))),
+        "folded" => folded_sphere((((size.max(12) - 2) as f64 / 10.0).sqrt().round() as usize).max(1)),
         other => {
-            eprintln!("synth_mesh: unknown kind '{other}' (open, closed or geodesic)");
+            eprintln!("synth_mesh: unknown kind '{other}' (open, closed, geodesic or folded)");
             std::process::exit(2)
         }
     };

@@ -293,7 +293,7 @@ typedef struct capmesh_v1_param_options {
   int32_t puncture_end;
   /**
    * Closed surfaces of more vertices than this are mapped through a decimated copy whose map
-   * is prolonged to every vertex (near-linear time and memory); 0 = never. Default 150000.
+   * is prolonged to every vertex (near-linear time and memory); 0 = never. Default 100000.
    */
   uint32_t multilevel_above;
   /**

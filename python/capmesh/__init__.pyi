@@ -49,7 +49,7 @@ def parameterize(
     area_refinement: int = 30,
     puncture_end: str = "best",
     search_sites: int = 2000,
-    multilevel_above: int = 150000,
+    multilevel_above: int = 100000,
     coarse_vertices: int = 50000,
 ) -> CapMap: ...
 def remesh(

@@ -73,7 +73,7 @@ pub struct capmesh_v1_param_options {
     /// One of `CAPMESH_V1_PUNCTURE_*` (closed surfaces). Default best (0).
     pub puncture_end: i32,
     /// Closed surfaces of more vertices than this are mapped through a decimated copy whose map
-    /// is prolonged to every vertex (near-linear time and memory); 0 = never. Default 150000.
+    /// is prolonged to every vertex (near-linear time and memory); 0 = never. Default 100000.
     pub multilevel_above: u32,
     /// Vertices of that decimated copy (at least; an eighth of the input's when more). Default
     /// 50000.

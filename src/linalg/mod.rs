@@ -8,7 +8,7 @@ pub(crate) mod laplacian;
 pub(crate) mod nested_dissection;
 pub(crate) mod sparse;
 
-pub use conjugate_gradient::{jacobi_cg2, CgOutcome};
+pub use conjugate_gradient::{jacobi_cg2, jacobi_cg2_or_give_up, CgOutcome};
 pub use graph_matrix::GraphPattern;
 pub use laplacian::{cotangent_weights, CotanWeights};
 pub use factor_buffer::release_spare;

@@ -1,5 +1,5 @@
-//! Procedural meshes for tests and benchmarks: a spherical cap, two spheres, a planar disk, an
-//! annulus and a torus. All faces are counter-clockwise seen from outside (closed surfaces),
+//! Procedural meshes for tests and benchmarks: a spherical cap, three spheres (one folded), a
+//! planar disk, an annulus and a torus. All faces are counter-clockwise seen from outside (closed surfaces),
 //! from the sphere's outside (cap) or from `+z` (planar shapes).
 //!
 //! Parameters are clamped to sensible ranges instead of panicking; each function documents how,
@@ -287,6 +287,29 @@ pub fn geodesic_sphere(frequency: usize) -> TriMesh {
         }
     }
     TriMesh::new(vertices, faces)
+}
+
+/// A folded (cortex-like) closed surface on the [`geodesic_sphere`] of `frequency`: the radius
+/// `1 + 0.12 sum_i sin(9 d_i . p + 2.4 i) / sqrt(12)` over twelve directions `d_i` on a
+/// Fibonacci spiral of the sphere (gyri and sulci about 0.7 apart, radius 0.74-1.28 at
+/// frequency 114), then axes (1, 0.75, 0.6). Genus 0 (a radial graph over the sphere).
+pub fn folded_sphere(frequency: usize) -> TriMesh {
+    const WAVES: usize = 12;
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let directions: Vec<[f64; 3]> = (0..WAVES)
+        .map(|i| {
+            let z = 1.0 - (2 * i + 1) as f64 / WAVES as f64;
+            let (s, t) = ((1.0 - z * z).sqrt(), golden * i as f64);
+            [s * t.cos(), s * t.sin(), z]
+        })
+        .collect();
+    let mut mesh = geodesic_sphere(frequency);
+    for p in &mut mesh.vertices {
+        let sum: f64 = directions.iter().enumerate().map(|(i, d)| (9.0 * (d[0] * p[0] + d[1] * p[1] + d[2] * p[2]) + 2.4 * i as f64).sin()).sum();
+        let r = 1.0 + 0.12 * sum / (WAVES as f64).sqrt();
+        *p = [r * p[0], 0.75 * r * p[1], 0.6 * r * p[2]];
+    }
+    mesh
 }
 
 /// Planar unit disk in `z = 0`: a centre vertex and `n` concentric rings (ring `i` has radius

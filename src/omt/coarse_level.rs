@@ -35,6 +35,8 @@ pub struct CoarseLevel {
     pub masses: Vec<f64>,
     /// Per fine vertex, up to three `(coarse site, weight)` pairs (unused slots weigh 0).
     prolongation: Vec<[(u32, f64); 3]>,
+    /// The radius `h` of the covering's balls.
+    hops: usize,
 }
 
 impl CoarseLevel {
@@ -43,15 +45,34 @@ impl CoarseLevel {
     /// (never fewer than the boundary vertices). `None` when the sites cannot be triangulated
     /// or no covering is smaller than the mesh.
     pub fn build(disk_map: &[[f64; 2]], faces: &[[u32; 3]], on_boundary: &[bool], target: &[f64], max_sites: usize) -> Option<Self> {
-        let n = disk_map.len();
-        let neighbors = neighbors_of_faces(n, faces);
+        let neighbors = neighbors_of_faces(disk_map.len(), faces);
         let mut seeds = Vec::new();
-        for h in 1..=64 {
-            seeds = cover(&neighbors, on_boundary, h);
+        let mut hops = 1;
+        for h in 1..=MAX_HOPS {
+            (seeds, hops) = (cover(&neighbors, on_boundary, h), h);
             if seeds.len() <= max_sites.max(on_boundary.iter().filter(|b| **b).count()) {
                 break;
             }
         }
+        Self::from_seeds(disk_map, on_boundary, target, seeds, hops)
+    }
+
+    /// The level of the same problem on the covering by the largest balls that give more
+    /// sites than this level (one hop less: about two to three times the sites), if that is
+    /// fewer than half the vertices; `None` otherwise, or from a covering by 1-hop balls: the
+    /// next level is the full problem.
+    pub fn finer(&self, disk_map: &[[f64; 2]], faces: &[[u32; 3]], on_boundary: &[bool], target: &[f64]) -> Option<Self> {
+        let neighbors = neighbors_of_faces(disk_map.len(), faces);
+        let (hops, seeds) = (1..self.hops).rev().map(|h| (h, cover(&neighbors, on_boundary, h))).find(|(_, seeds)| seeds.len() > self.len())?;
+        if 2 * seeds.len() >= disk_map.len() {
+            return None;
+        }
+        Self::from_seeds(disk_map, on_boundary, target, seeds, hops)
+    }
+
+    /// The level on the covering `seeds` by `hops`-hop balls.
+    fn from_seeds(disk_map: &[[f64; 2]], on_boundary: &[bool], target: &[f64], seeds: Vec<u32>, hops: usize) -> Option<Self> {
+        let n = disk_map.len();
         if seeds.len() >= n || seeds.len() < 3 {
             return None;
         }
@@ -99,7 +120,7 @@ impl CoarseLevel {
         }
         let sites = seeds.iter().map(|&v| disk_map[v as usize]).collect();
         let on_boundary = seeds.iter().map(|&v| on_boundary[v as usize]).collect();
-        Some(Self { sites, on_boundary, masses, prolongation })
+        Some(Self { sites, on_boundary, masses, prolongation, hops })
     }
 
     /// Number of coarse sites.
@@ -122,6 +143,9 @@ impl CoarseLevel {
             .collect()
     }
 }
+
+/// Largest ball radius of the covering tried.
+const MAX_HOPS: usize = 64;
 
 /// Greedy covering: every boundary vertex, then each vertex (in index order) not within
 /// `hops` edges of an earlier site.
@@ -241,6 +265,26 @@ mod tests {
         let (fine, coarse): (f64, f64) = (target.iter().sum(), level.masses.iter().sum());
         assert!((fine - coarse).abs() < 1e-12 * fine, "{fine} vs {coarse}");
         assert!(level.masses.iter().all(|m| *m > 0.0));
+    }
+
+    /// Each finer level covers by smaller balls, so it has more sites, until the
+    /// next would hold half the vertices: then the full problem is next (`None`).
+    #[test]
+    fn finer_levels_have_more_sites_down_to_the_full_problem() {
+        let (mesh, plane, boundary, target, level) = disk_level(60, 1000);
+        assert!(level.hops >= 3, "{} hops", level.hops);
+        let mut levels = vec![level];
+        while let Some(next) = levels.last().unwrap().finer(&plane, &mesh.faces, &boundary, &target) {
+            levels.push(next);
+        }
+        for pair in levels.windows(2) {
+            assert!(pair[1].hops < pair[0].hops);
+            assert!(pair[1].len() > pair[0].len(), "{} then {} sites", pair[0].len(), pair[1].len());
+        }
+        let last = levels.last().unwrap();
+        assert!(2 * last.len() < mesh.n_vertices());
+        let masses: f64 = last.masses.iter().sum();
+        assert!((masses - target.iter().sum::<f64>()).abs() < 1e-12 * masses);
     }
 
     #[test]

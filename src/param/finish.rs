@@ -40,11 +40,13 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         target,
         flatten_report,
         puncture,
-        radius,
+        mut radius,
         map,
         search_area_distortion: _,
         curve,
         search_sites,
+        search_refinements,
+        unrefined_radius,
         coarse_newton_iterations,
         mut newton_iterations,
         mut solves,
@@ -59,7 +61,16 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         Some(map) => map,
         None => {
             let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, transport_density(options.domain), options.transport.clone());
-            let map = transport.map_at(radius, progress)?;
+            let mut mapped = transport.map_at(radius, progress);
+            // A refined search's radius where the transport fails (a very elongated surface
+            // at the bound of `Z*`): the first search's (docs/method.md section 5).
+            use crate::omt::OmtError::{Linear, NotConverged, Stalled, Triangulation};
+            if let (Err(Stalled { .. } | NotConverged { .. } | Linear(_) | Triangulation(_)), Some(r0)) = (&mapped, unrefined_radius) {
+                radius = r0;
+                transport = PlanarTransport::new(&disk, &on_boundary, &target, transport_density(options.domain), options.transport.clone());
+                mapped = transport.map_at(radius, progress);
+            }
+            let map = mapped?;
             newton_iterations += transport.newton_iterations;
             solves += transport.solves;
             symbolic += transport.symbolic_factorizations;
@@ -95,6 +106,7 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         smoothing_trials: trials,
         newton_iterations,
         search_sites,
+        search_refinements,
         coarse_newton_iterations,
         transport_solves: solves,
         transport_symbolic_factorizations: symbolic,

@@ -127,7 +127,12 @@ pub struct ParamReport {
     /// Sites of the coarse level the radius search ran on; `None` when it ran at full
     /// resolution.
     pub search_sites: Option<usize>,
-    /// Newton iterations of the coarse radius search.
+    /// Times a closed surface's coarse radius search ended inside the bound of `Z*` and was
+    /// made again on a finer level (docs/method.md section 5; `search_sites` and
+    /// `radius_curve` are the kept search's: the finest, unless its transport failed). Where
+    /// the full transport fails at the refined radius, `r_star` is the first search's.
+    pub search_refinements: usize,
+    /// Newton iterations of the coarse radius search (every level's).
     pub coarse_newton_iterations: usize,
     /// Transport solves.
     pub transport_solves: usize,

@@ -75,6 +75,10 @@ pub(crate) struct Searched<'p> {
     pub(super) search_area_distortion: Option<f64>,
     pub(super) curve: Vec<RadiusSample>,
     pub(super) search_sites: Option<usize>,
+    pub(super) search_refinements: usize,
+    /// The radius of the first search when a finer level moved it: `finish` maps there if
+    /// the full transport fails at `radius`.
+    pub(super) unrefined_radius: Option<f64>,
     pub(super) coarse_newton_iterations: usize,
     /// Full-resolution Newton iterations and solves so far, and symbolic factorizations at
     /// either level.
@@ -151,16 +155,13 @@ pub(crate) fn search_radius<'p>(prepared: &'p Prepared, options: &ParamOptions, 
     let mut transport = PlanarTransport::new(&disk, &on_boundary, &target, density, options.transport.clone());
     let t_ot = Instant::now();
     let mut curve = Vec::new();
-    let (mut search_sites, mut coarse_newton_iterations, mut coarse_symbolic) = (None, 0, 0);
+    let (mut search_sites, mut coarse_newton_iterations, mut coarse_symbolic, mut search_refinements) = (None, 0, 0, 0);
+    let mut unrefined_radius = None;
     let mut search_area_distortion = None;
     let (radius, transported) = match options.domain {
         Domain::Disk => (1.0, None),
         Domain::Adaptive => {
-            let coarse = search_level_sites(disk.len(), options.search.sites, kind == SurfaceKind::ClosedSphere).and_then(|sites| CoarseLevel::build(&disk, &faces, &on_boundary, &target, sites));
-            let mut coarse_transport = coarse.as_ref().map(|c| PlanarTransport::new(&c.sites, &c.on_boundary, &c.masses, density, options.transport.clone()));
-            search_sites = coarse.as_ref().map(CoarseLevel::len);
-            let mut best: Option<SearchBest> = None;
-            let mut evals = 0usize;
+            let mut coarse = search_level_sites(disk.len(), options.search.sites, kind == SurfaceKind::ClosedSphere).and_then(|sites| CoarseLevel::build(&disk, &faces, &on_boundary, &target, sites));
             let max_evals = options.search.max_evaluations;
             let search_tolerance = options.search.tolerance;
             // Closed surfaces search over w = atanh(Z*) (= -ln r): their optimum is at the
@@ -173,46 +174,80 @@ pub(crate) fn search_radius<'p>(prepared: &'p Prepared, options: &ParamOptions, 
             // variable's first evaluations land in the worse basin there.
             let in_atanh = kind == SurfaceKind::ClosedSphere;
             let to_z = |w: f64| if in_atanh { w.tanh() } else { w };
-            let mut objective = |w: f64| -> Result<f64, Error> {
-                let z = to_z(w);
-                let r = radius_of_z_star(z);
-                evals += 1;
-                progress::check(progress, Stage::RadiusSearch, evals as f64 / max_evals as f64, &format!("r = {r:.4}, Z* = {z:.4}"))?;
-                let (prolonged, iterations, map) = match (coarse.as_ref(), coarse_transport.as_mut()) {
-                    (Some(level), Some(ct)) => {
-                        let map = ct.map_at_tolerance(r, search_tolerance, progress)?;
-                        (level.prolong(&map.centroids), map.report.iterations, None)
-                    }
-                    _ => {
-                        let map = transport.map_at_tolerance(r, search_tolerance, progress)?;
-                        (Vec::new(), map.report.iterations, Some(map))
-                    }
-                };
-                let centroids: &[[f64; 2]] = map.as_ref().map_or(&prolonged, |m| &m.centroids);
-                let e = if kind == SurfaceKind::OpenDisk {
-                    conformal_energy(&work.vertices, centroids, &faces)
-                } else {
-                    conformal_energy_surface_weighted(&work.vertices, centroids, &faces)
-                };
-                curve.push(RadiusSample { r, z_star: z, energy: e, newton_iterations: iterations });
-                if best.as_ref().map_or(true, |b| e < b.energy) {
-                    best = Some(SearchBest { r, energy: e, map, prolonged });
-                }
-                Ok(e)
-            };
             let (z_lo, z_hi) = (z_star_of_radius(MAX_RADIUS), z_star_of_radius(MIN_RADIUS));
             let z_tolerance = options.search.z_tolerance;
-            if in_atanh {
-                // Their energy falls all the way to the bound on every shared closed mesh:
-                // the search starts there and ends after two solves when the energy rises
-                // inwards (`brent::minimize_from_lower_bound`).
-                brent::minimize_from_lower_bound(&mut objective, z_lo.atanh(), z_hi.atanh(), |w: f64| z_tolerance * w.cosh().powi(2), max_evals)?;
-            } else {
-                brent::minimize(&mut objective, z_lo, z_hi, z_tolerance, max_evals)?;
-            }
-            coarse_newton_iterations = coarse_transport.as_ref().map_or(0, |t| t.newton_iterations);
-            coarse_symbolic = coarse_transport.as_ref().map_or(0, |t| t.symbolic_factorizations);
-            let SearchBest { r, map, prolonged, .. } = best.ok_or_else(|| Error::Internal("radius search made no evaluation".into()))?;
+            // The coarser level's result while a finer one searches (see below).
+            let mut coarser: Option<(SearchBest, Vec<RadiusSample>, Option<usize>)> = None;
+            let mut first_radius = None;
+            let best = loop {
+                curve.clear();
+                let mut coarse_transport = coarse.as_ref().map(|c| PlanarTransport::new(&c.sites, &c.on_boundary, &c.masses, density, options.transport.clone()));
+                search_sites = coarse.as_ref().map(CoarseLevel::len);
+                let mut best: Option<SearchBest> = None;
+                let mut evals = 0usize;
+                let mut objective = |w: f64| -> Result<f64, Error> {
+                    let z = to_z(w);
+                    let r = radius_of_z_star(z);
+                    evals += 1;
+                    progress::check(progress, Stage::RadiusSearch, evals as f64 / max_evals as f64, &format!("r = {r:.4}, Z* = {z:.4}"))?;
+                    let (prolonged, iterations, map) = match (coarse.as_ref(), coarse_transport.as_mut()) {
+                        (Some(level), Some(ct)) => {
+                            let map = ct.map_at_tolerance(r, search_tolerance, progress)?;
+                            (level.prolong(&map.centroids), map.report.iterations, None)
+                        }
+                        _ => {
+                            let map = transport.map_at_tolerance(r, search_tolerance, progress)?;
+                            (Vec::new(), map.report.iterations, Some(map))
+                        }
+                    };
+                    let centroids: &[[f64; 2]] = map.as_ref().map_or(&prolonged, |m| &m.centroids);
+                    let e = if kind == SurfaceKind::OpenDisk {
+                        conformal_energy(&work.vertices, centroids, &faces)
+                    } else {
+                        conformal_energy_surface_weighted(&work.vertices, centroids, &faces)
+                    };
+                    curve.push(RadiusSample { r, z_star: z, energy: e, newton_iterations: iterations });
+                    if best.as_ref().map_or(true, |b| e < b.energy) {
+                        best = Some(SearchBest { r, energy: e, map, prolonged });
+                    }
+                    Ok(e)
+                };
+                let searched = if in_atanh {
+                    // Their energy falls all the way to the bound on every shared closed mesh:
+                    // the search starts there and ends after two solves when the energy rises
+                    // inwards (`brent::minimize_from_lower_bound`).
+                    brent::minimize_from_lower_bound(&mut objective, z_lo.atanh(), z_hi.atanh(), |w: f64| z_tolerance * w.cosh().powi(2), max_evals).map(|_| ())
+                } else {
+                    brent::minimize(&mut objective, z_lo, z_hi, z_tolerance, max_evals).map(|_| ())
+                };
+                coarse_newton_iterations += coarse_transport.as_ref().map_or(0, |t| t.newton_iterations);
+                coarse_symbolic += coarse_transport.as_ref().map_or(0, |t| t.symbolic_factorizations);
+                match (searched, coarser.take()) {
+                    // A finer level whose transport fails (a very elongated surface, whose
+                    // optimum is inside the bound, stalls there): the coarser level's result.
+                    (Err(Error::Transport(_)), Some((kept, kept_curve, kept_sites))) => {
+                        (curve, search_sites) = (kept_curve, kept_sites);
+                        break kept;
+                    }
+                    (Err(e), _) => return Err(e),
+                    (Ok(()), _) => {}
+                }
+                let best = best.ok_or_else(|| Error::Internal("radius search made no evaluation".into()))?;
+                // A closed surface's energy falls to the bound of `Z*` wherever the search level
+                // resolves the map (SEARCH_RATIO): a coarse search that ends inside it is checked
+                // on the next finer level (the full problem after the finest).
+                match &coarse {
+                    Some(level) if in_atanh && z_star_of_radius(best.r) - z_lo > z_tolerance => {
+                        coarse = level.finer(&disk, &faces, &on_boundary, &target);
+                        search_refinements += 1;
+                        first_radius.get_or_insert(best.r);
+                        coarser = Some((best, std::mem::take(&mut curve), search_sites));
+                    }
+                    _ => break best,
+                }
+            };
+            let SearchBest { r, map, prolonged, .. } = best;
+            unrefined_radius = first_radius.filter(|&r0| r0 != r);
             if rank_ends {
                 let on_cap: Vec<[f64; 3]> = map.as_ref().map_or(&prolonged, |m| &m.centroids).iter().map(|&q| inverse_stereographic(q)).collect();
                 search_area_distortion = Some(Stats::of(area_distortion(&work.vertices, &on_cap, &faces)).mean_abs);
@@ -242,6 +277,8 @@ pub(crate) fn search_radius<'p>(prepared: &'p Prepared, options: &ParamOptions, 
         search_area_distortion,
         curve,
         search_sites,
+        search_refinements,
+        unrefined_radius,
         coarse_newton_iterations,
         newton_iterations,
         solves,

@@ -14,7 +14,7 @@
 use super::area_refine::{refine_areas, RefineOptions};
 use crate::omt::planar_transport::TransportMap;
 use super::untangle::{untangle, untangle_locally, PendingRepair, UntangleReport};
-use crate::linalg::{jacobi_cg2, CotanWeights, SolveError, SpdSolver};
+use crate::linalg::{jacobi_cg2_or_give_up, CotanWeights, SolveError, SpdSolver};
 use faer::sparse::SparseColMat;
 use crate::metrics::{area_distortion, Stats};
 use rayon::prelude::*;
@@ -26,26 +26,37 @@ pub struct CentroidSmoother<'a> {
     weights: &'a CotanWeights,
     fixed: &'a [bool],
     solver: SpdSolver,
+    /// Factor every system, however large: conjugate gradients gave up on one
+    /// ([`CentroidSmoother::prime`]).
+    factored: bool,
 }
 
 impl<'a> CentroidSmoother<'a> {
     /// A smoother for the mesh whose cotangent weights are `weights`; `fixed` vertices keep
     /// their centroid.
     pub fn new(weights: &'a CotanWeights, fixed: &'a [bool]) -> Self {
-        Self { weights, fixed, solver: SpdSolver::new() }
+        Self { weights, fixed, solver: SpdSolver::new(), factored: false }
     }
 
-    /// Compute the symbolic factorization the smoothing systems of masses `tau` share (every
-    /// `kappa > 0` gives the same pattern), so that clones factor numerically only. Systems
-    /// solved by conjugate gradients need none: nothing is done for them.
-    pub fn prime(&mut self, c: &[[f64; 2]], tau: &[f64]) -> Result<(), SolveError> {
+    /// Prepare the smoothing of centroids `c` with masses `tau` at several strengths, `kappa`
+    /// (> 0) first, so that clones of the smoother solve the others. A system above
+    /// [`ITERATIVE_UNKNOWNS`] is tried by conjugate gradients at `kappa`: if they converge,
+    /// their solution is returned and the other strengths are tried the same way; if they
+    /// give up, every strength is factored without trying them (on a 124k marching-cubes
+    /// surface they gave up on all four strengths the search tried, after 300 iterations
+    /// each). A factored system's symbolic factorization (every `kappa > 0` gives the same
+    /// pattern) is computed here, so that clones factor numerically only.
+    pub fn prime(&mut self, c: &[[f64; 2]], tau: &[f64], kappa: f64) -> Result<Option<Vec<[f64; 2]>>, SolveError> {
         if self.iterative() {
-            return Ok(());
+            if let Some(p) = self.smooth_iteratively(c, tau, kappa) {
+                return Ok(Some(p));
+            }
+            self.factored = true;
         }
         if let Some((mat, _, _)) = self.system(c, tau, 1.0)? {
             self.solver.analyze(&mat, "centroid smoothing")?;
         }
-        Ok(())
+        Ok(None)
     }
 
     /// Smoothed positions for centroids `c` with masses `tau`.
@@ -69,13 +80,15 @@ impl<'a> CentroidSmoother<'a> {
         Ok((0..c.len()).map(|v| index[v].map_or(c[v], |i| [rhs[0][i], rhs[1][i]])).collect())
     }
 
-    /// Whether the systems have more than [`ITERATIVE_UNKNOWNS`] unknowns.
+    /// Whether the systems are tried by conjugate gradients: more than
+    /// [`ITERATIVE_UNKNOWNS`] unknowns, and no give-up in [`CentroidSmoother::prime`].
     fn iterative(&self) -> bool {
-        self.fixed.iter().filter(|&&f| !f).count() > ITERATIVE_UNKNOWNS
+        !self.factored && self.fixed.iter().filter(|&&f| !f).count() > ITERATIVE_UNKNOWNS
     }
 
     /// [`CentroidSmoother::smooth`] by conjugate gradients from the centroids; `None` when
-    /// they do not converge within [`ITERATIVE_MAX_ITERATIONS`].
+    /// they do not converge within [`ITERATIVE_MAX_ITERATIONS`] or give up before
+    /// ([`jacobi_cg2_or_give_up`]).
     fn smooth_iteratively(&self, c: &[[f64; 2]], tau: &[f64], kappa: f64) -> Option<Vec<[f64; 2]>> {
         let n = c.len();
         let beta = kappa * tau.iter().sum::<f64>() / n as f64;
@@ -110,7 +123,7 @@ impl<'a> CentroidSmoother<'a> {
             }
         };
         let mut x = c.to_vec();
-        jacobi_cg2(apply, &diagonal, &rhs, &mut x, ITERATIVE_TOLERANCE, ITERATIVE_MAX_ITERATIONS).converged.then_some(x)
+        jacobi_cg2_or_give_up(apply, &diagonal, &rhs, &mut x, ITERATIVE_TOLERANCE, ITERATIVE_MAX_ITERATIONS).converged.then_some(x)
     }
 
     /// The smoothing system (matrix, right-hand sides, free-vertex numbering) for `kappa`;
@@ -152,7 +165,7 @@ impl<'a> CentroidSmoother<'a> {
 }
 
 /// Above this many free vertices the smoothing systems are solved by conjugate gradients
-/// (Jacobi preconditioner, from the centroids, [`crate::linalg::jacobi_cg2`]) instead of a
+/// (Jacobi preconditioner, from the centroids, [`crate::linalg::jacobi_cg2_or_give_up`]) instead of a
 /// sparse Cholesky factorization, which each candidate `kappa` needs anew: on the large
 /// meshes a few dozen iterations at [`ITERATIVE_TOLERANCE`] beat a factorization. The small
 /// systems, where the factorization is as fast, and any that does not converge within
@@ -267,13 +280,16 @@ pub fn smooth_centroid_map(
     smoothing: Smoothing,
     to_domain: &ToDomain<'_>,
 ) -> Result<SmoothedMap, SolveError> {
-    // One symbolic factorization for all candidates (they run in parallel on clones).
+    // One symbolic factorization for all candidates (they run in parallel on clones), or
+    // conjugate gradients for all, as the first strength the walk tries decides.
     let mut primed = CentroidSmoother::new(weights, held);
-    if smoothing == Smoothing::Auto {
-        primed.prime(&map.centroids, &map.masses)?;
-    }
+    let first = AUTO_KAPPAS[AUTO_START];
+    let probed = if smoothing == Smoothing::Auto { primed.prime(&map.centroids, &map.masses, first)? } else { None };
     let evaluate = |kappa: f64| -> Result<Candidate, SolveError> {
-        let mut p = primed.clone().smooth(&map.centroids, &map.masses, kappa)?;
+        let mut p = match &probed {
+            Some(p) if kappa == first => p.clone(),
+            _ => primed.clone().smooth(&map.centroids, &map.masses, kappa)?,
+        };
         let (rep, pending) = match untangle_locally(&mut p, faces, fixed, radius) {
             Ok(rep) => (rep, None),
             Err(pending) => (pending.report_so_far(&p, radius), Some(pending)),

@@ -60,7 +60,7 @@ pub struct ClosedOptions {
 }
 
 /// The default [`ClosedOptions::multilevel_above`].
-pub const DEFAULT_MULTILEVEL_ABOVE: usize = 150_000;
+pub const DEFAULT_MULTILEVEL_ABOVE: usize = 100_000;
 
 /// The default [`ClosedOptions::coarse_vertices`].
 pub const DEFAULT_COARSE_VERTICES: usize = 50_000;
