@@ -11,7 +11,8 @@
 //! 3. parameterized at that size by the whole pipeline (radius search, transport, fold
 //!    repair, refinement, puncture end and `lambda` fallbacks), punctured at the same quad;
 //! 4. prolonged: the removed vertices put back in reverse order, each inside the polygon of
-//!    its star so that no face folds ([`crate::refine::prolong`]);
+//!    its star so that no face folds ([`crate::refine::prolong`]), then corrected radially
+//!    (`refine::radial`: the copy's band of compressed faces around the puncture);
 //! 5. refined at full resolution by the face-level area refinement (linear per sweep) and
 //!    measured like any map ([`super::finish::conclude`]).
 //!
@@ -33,7 +34,9 @@ use crate::mesh::{SurfaceKind, TriMesh};
 use crate::progress::{self, Progress, Stage};
 use crate::refine::area_refine::{refine_towards, RefineOptions};
 use crate::refine::prolong::{mean_value_weights, prolong, DomainPoints};
+use crate::refine::radial::correct_radially;
 use crate::refine::untangle::untangle;
+use std::f64::consts::PI;
 use std::time::Instant;
 
 /// Whether the prepared mesh is mapped through a decimated copy: a closed genus-0 input of
@@ -145,6 +148,12 @@ pub(crate) fn parameterize_multilevel(mesh: &TriMesh, prepared: &Prepared, optio
     // one-level pipeline unties what it folded.
     let folded = folded_faces(&plane, &faces).len();
     let untangle = (folded > 0).then(|| untangle(&mut plane, &faces, &on_boundary, coarse_map.report.r_star.unwrap_or(1.0)));
+    // The copy's band of compressed faces around the puncture is a radial error: corrected
+    // at once (docs/method.md section 20).
+    let spherical = options.domain != crate::cap::Domain::Disk;
+    let area_within = |rho: f64| if spherical { 4.0 * PI * rho * rho / (1.0 + rho * rho) } else { PI * rho * rho };
+    let radius_of_area = |a: f64| if spherical { (a / (4.0 * PI - a)).max(0.0).sqrt() } else { (a / PI).max(0.0).sqrt() };
+    let radial = correct_radially(&mut plane, &work.vertices, &faces, &on_boundary, coarse_map.report.r_star.unwrap_or(1.0), &area_within, &radius_of_area);
     let prolong_seconds = t_prolong.elapsed().as_secs_f64();
 
     let mut report = coarse_map.report;
@@ -154,6 +163,7 @@ pub(crate) fn parameterize_multilevel(mesh: &TriMesh, prepared: &Prepared, optio
         prolong: prolonged,
         folded_after_prolong: folded,
         untangle,
+        radial,
         decimate_seconds,
         coarse_seconds,
         prolong_seconds,

@@ -186,6 +186,8 @@ pub struct MultilevelReport {
     pub folded_after_prolong: usize,
     /// The fold repair of those faces, when there were any.
     pub untangle: Option<UntangleReport>,
+    /// The radial mass correction of the prolonged map (docs/method.md section 20).
+    pub radial: crate::refine::RadialReport,
     /// Seconds of the decimation (the punctures chosen first).
     pub decimate_seconds: f64,
     /// Seconds of the decimated mesh's parameterization.
