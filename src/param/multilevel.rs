@@ -36,7 +36,6 @@ use crate::refine::area_refine::{refine_towards, RefineOptions};
 use crate::refine::prolong::{mean_value_weights, prolong, DomainPoints};
 use crate::refine::radial::correct_radially;
 use crate::refine::untangle::untangle;
-use std::f64::consts::PI;
 use std::time::Instant;
 
 /// Whether the prepared mesh is mapped through a decimated copy: a closed genus-0 input of
@@ -150,10 +149,7 @@ pub(crate) fn parameterize_multilevel(mesh: &TriMesh, prepared: &Prepared, optio
     let untangle = (folded > 0).then(|| untangle(&mut plane, &faces, &on_boundary, coarse_map.report.r_star.unwrap_or(1.0)));
     // The copy's band of compressed faces around the puncture is a radial error: corrected
     // at once (docs/method.md section 20).
-    let spherical = options.domain != crate::cap::Domain::Disk;
-    let area_within = |rho: f64| if spherical { 4.0 * PI * rho * rho / (1.0 + rho * rho) } else { PI * rho * rho };
-    let radius_of_area = |a: f64| if spherical { (a / (4.0 * PI - a)).max(0.0).sqrt() } else { (a / PI).max(0.0).sqrt() };
-    let radial = correct_radially(&mut plane, &work.vertices, &faces, &on_boundary, coarse_map.report.r_star.unwrap_or(1.0), &area_within, &radius_of_area);
+    let radial = correct_radially(&mut plane, &work.vertices, &faces, &on_boundary, coarse_map.report.r_star.unwrap_or(1.0), options.domain);
     let prolong_seconds = t_prolong.elapsed().as_secs_f64();
 
     let mut report = coarse_map.report;

@@ -5,7 +5,9 @@
 //! removes only slowly: a multilevel map's band of compressed faces around the puncture, left
 //! by its decimated copy.
 
+use crate::cap::Domain;
 use crate::mesh::geometry::{folded_faces, vertex_areas};
+use std::f64::consts::PI;
 
 /// Radial bins of the correction: the correction is piecewise linear in the radius between
 /// the bins' edges, each bin holding as many free vertices (at least [`MIN_BIN_VERTICES`]).
@@ -41,21 +43,23 @@ pub struct RadialReport {
     pub reverted: usize,
 }
 
+/// The area of `domain` within planar radius `rho`: the unit sphere's cap that the inverse
+/// stereographic projection puts there, `4 pi rho^2 / (1 + rho^2)`, or the planar disk's.
+fn area_within(domain: Domain, rho: f64) -> f64 {
+    if domain == Domain::Disk { PI * rho * rho } else { 4.0 * PI * rho * rho / (1.0 + rho * rho) }
+}
+
+/// The planar radius within which `domain` has area `a` ([`area_within`]'s inverse).
+fn radius_of_area(domain: Domain, a: f64) -> f64 {
+    if domain == Domain::Disk { (a / PI).max(0.0).sqrt() } else { (a / (4.0 * PI - a)).max(0.0).sqrt() }
+}
+
 /// Move the free vertices of `plane` (the map of `faces` onto a disk of radius `radius`
-/// centred at the origin, whose `fixed` vertices lie on the rim) radially so that the domain
-/// area within each radius is the share of the surface's (`vertices`) area of the vertices
-/// inside it. `area_within(rho)` is the domain's area within planar radius `rho`, increasing,
-/// and `radius_of_area` its inverse. The corrected map is kept only when it folds no face
-/// that was unfolded.
-pub(crate) fn correct_radially(
-    plane: &mut [[f64; 2]],
-    vertices: &[[f64; 3]],
-    faces: &[[u32; 3]],
-    fixed: &[bool],
-    radius: f64,
-    area_within: &dyn Fn(f64) -> f64,
-    radius_of_area: &dyn Fn(f64) -> f64,
-) -> RadialReport {
+/// centred at the origin, whose `fixed` vertices lie on the rim; lifted onto `domain`)
+/// radially so that the domain area within each radius is the share of the surface's
+/// (`vertices`) area of the vertices inside it. The corrected map is kept only when it folds
+/// no face that was unfolded.
+pub(crate) fn correct_radially(plane: &mut [[f64; 2]], vertices: &[[f64; 3]], faces: &[[u32; 3]], fixed: &[bool], radius: f64, domain: Domain) -> RadialReport {
     let mass = vertex_areas(vertices, faces);
     let mut free: Vec<usize> = (0..plane.len()).filter(|&v| !fixed[v] && mass[v] > 0.0).collect();
     let bins = (free.len() / MIN_BIN_VERTICES).min(BINS);
@@ -93,9 +97,9 @@ pub(crate) fn correct_radially(
     // masses inside it.
     let anchor = edges.len() - HELD_BINS.min(edges.len() - 1);
     let (r_anchor, m_anchor) = (edges[anchor].0, masses[anchor - 1]);
-    let a_anchor = area_within(r_anchor);
+    let a_anchor = area_within(domain, r_anchor);
     for k in 1..edges.len() {
-        edges[k].1 = if k < anchor { radius_of_area(a_anchor * masses[k - 1] / m_anchor) } else { edges[k].0 };
+        edges[k].1 = if k < anchor { radius_of_area(domain, a_anchor * masses[k - 1] / m_anchor) } else { edges[k].0 };
     }
     edges.push((radius, radius));
     let before = folded_faces(plane, faces).len();
@@ -117,12 +121,12 @@ pub(crate) fn correct_radially(
     // a percent of the radius): its corners go back, until no face that was unfolded is
     // folded.
     let mut reverted = 0;
+    let mut folded = folded_faces(plane, faces);
     for _ in 0..REVERT_ROUNDS {
-        let folded = folded_faces(plane, faces);
         if folded.len() <= before {
             break;
         }
-        for f in folded {
+        for &f in &folded {
             for &v in &faces[f] {
                 let v = v as usize;
                 if plane[v] != old[v] {
@@ -131,8 +135,9 @@ pub(crate) fn correct_radially(
                 }
             }
         }
+        folded = folded_faces(plane, faces);
     }
-    let kept = folded_faces(plane, faces).len() <= before;
+    let kept = folded.len() <= before;
     if !kept {
         plane.copy_from_slice(&old);
     }
@@ -146,14 +151,6 @@ mod tests {
     use crate::mesh::shapes::{spherical_cap, spherical_cap_sectors};
     use crate::mesh::topology::is_boundary_vertex;
     use crate::metrics::{area_distortion, Stats};
-
-    fn spherical_area_within(rho: f64) -> f64 {
-        4.0 * std::f64::consts::PI * rho * rho / (1.0 + rho * rho)
-    }
-
-    fn spherical_radius_of_area(a: f64) -> f64 {
-        (a / (4.0 * std::f64::consts::PI - a)).max(0.0).sqrt()
-    }
 
     /// A spherical cap is mapped exactly by the stereographic projection (its faces lift back
     /// onto themselves). Distorted radially inside 0.8 of its radius (`r -> r (1 + 0.25
@@ -181,14 +178,14 @@ mod tests {
             })
             .collect();
         let before = d_area(&distorted);
-        let report = correct_radially(&mut distorted, &cap.vertices, &cap.faces, &fixed, radius, &spherical_area_within, &spherical_radius_of_area);
+        let report = correct_radially(&mut distorted, &cap.vertices, &cap.faces, &fixed, radius, Domain::Adaptive);
         let after = d_area(&distorted);
         eprintln!("mean |d_area| {before} -> {after}, {report:?}");
         assert!(report.kept && folded_faces(&distorted, &cap.faces).is_empty(), "{report:?}");
         assert!(before > 0.05 && after < 0.05 * before, "mean |d_area| {before} -> {after}");
         let edge = radius / 40.0;
         let mut same = exact.clone();
-        let report = correct_radially(&mut same, &cap.vertices, &cap.faces, &fixed, radius, &spherical_area_within, &spherical_radius_of_area);
+        let report = correct_radially(&mut same, &cap.vertices, &cap.faces, &fixed, radius, Domain::Adaptive);
         assert!(report.kept && report.max_move * radius < 0.01 * edge, "{report:?}");
     }
 }
