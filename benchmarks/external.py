@@ -11,6 +11,12 @@ on anatomical meshes that are not in the repository").
   downloaded the same way.
 - pymeshlab's sample bone (`pymeshlab/tests/sample_meshes/bone.ply` in the benchmark's venv: a
   long bone, 3022 faces, closed genus 0).
+- The Conte69 left hemisphere without its medial wall (BrainSpace's `conte69_32k_lh_mask.csv`):
+  the cortex as an open disk-like sheet, as surface-based analyses use it.
+- Two synthetic long bones (marching cubes of a capsule with rounded ends, scikit-image): a shaft
+  5-6 times as long as it is wide, where an area-preserving map onto the sphere is anisotropic
+  and its transport hardest to start (docs/method.md, "2. Logarithmic and stale Newton steps,
+  continuation").
 Then `capmesh remesh --faces N` runs on each (N = 5000 and 20000 by default) with the default
 options, and the table gives the figures of the issue's bars (the same as benchmarks/variants.py),
 each marked where it misses.
@@ -26,13 +32,55 @@ import sys
 import tempfile
 import zipfile
 
+import nibabel
+import numpy as np
 import pymeshlab
+from skimage import measure
 
 from variants import bar_cells, bar_counts, machine_line, remesh_row, write_report
 
 NILEARN = "0.14.1"
 BRAINSPACE = "0.3.0"
 SURFACES = ["pial_left", "pial_right", "white_left", "white_right", "infl_left", "infl_right"]
+# Synthetic long bones: name -> (shaft half-length, shaft radius, end radius, voxel size).
+LONG_BONES = {"long_bone_a": (4.0, 0.6, 1.3, 0.08), "long_bone_b": (5.0, 0.5, 1.2, 0.07)}
+
+
+def write_obj(path, vertices, faces):
+    """An OBJ of `vertices` (n x 3) and 0-based triangles `faces`."""
+    with open(path, "w") as out:
+        out.writelines(f"v {x:.6f} {y:.6f} {z:.6f}\n" for x, y, z in vertices)
+        out.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces)
+
+
+def long_bone(path, half_length, shaft, end, voxel):
+    """Marching cubes of a capsule (radius `shaft`, axis `[-half_length, half_length]` on x) with
+    two spheres blended onto its ends (a smooth minimum of the distance fields), one end smaller
+    and both off the axis, as the epiphyses of a long bone."""
+    extent = half_length + end + 0.5
+    xs = np.arange(-extent, extent, voxel)
+    ys = np.arange(-end - 0.5, end + 0.5, voxel)
+    x, y, z = np.meshgrid(xs, ys, ys, indexing="ij")
+
+    def smooth_min(a, b, k=0.8):
+        h = np.clip(0.5 + 0.5 * (b - a) / k, 0.0, 1.0)
+        return b * (1 - h) + a * h - k * h * (1 - h)
+
+    capsule = np.sqrt((x - np.clip(x, -half_length, half_length)) ** 2 + y**2 + z**2) - shaft
+    head = np.sqrt((x + half_length) ** 2 + y**2 + (z - 0.3) ** 2) - end
+    condyle = np.sqrt((x - half_length) ** 2 + (y - 0.2) ** 2 + z**2) - 0.8 * end
+    vertices, faces, _, _ = measure.marching_cubes(smooth_min(smooth_min(capsule, head), condyle), 0.0, spacing=(voxel,) * 3, allow_degenerate=False)
+    write_obj(path, vertices, faces)
+
+
+def open_cortex(path, surface, mask):
+    """The faces of the GIFTI `surface` whose three corners the CSV `mask` marks 1 (the cortex
+    without the medial wall), unused vertices dropped."""
+    gii = nibabel.load(surface)
+    vertices, faces = (gii.darrays[k].data for k in (0, 1))
+    keep = np.loadtxt(mask).astype(bool)[faces].all(axis=1)
+    used, inverse = np.unique(faces[keep], return_inverse=True)
+    write_obj(path, vertices[used], inverse.reshape(-1, 3))
 
 
 def wheel(work, requirement):
@@ -58,6 +106,14 @@ def surfaces(work):
             with open(path, "wb") as out:
                 out.write(z.read(f"brainspace/datasets/surfaces/conte69_32k_{hemi}.gii"))
             paths[f"conte69_32k_{hemi}"] = path
+        mask = os.path.join(work, "conte69_32k_lh_mask.csv")
+        with open(mask, "wb") as out:
+            out.write(z.read("brainspace/datasets/surfaces/conte69_32k_lh_mask.csv"))
+    paths["conte69_32k_lh_open"] = os.path.join(work, "conte69_32k_lh_open.obj")
+    open_cortex(paths["conte69_32k_lh_open"], paths["conte69_32k_lh"], mask)
+    for name, shape in LONG_BONES.items():
+        paths[name] = os.path.join(work, f"{name}.obj")
+        long_bone(paths[name], *shape)
     paths["pymeshlab_bone"] = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshes", "bone.ply")
     return paths
 
@@ -74,6 +130,8 @@ def main():
                 if r is not None:
                     row["input_faces"] = r["parameterization"]["n_faces"]
                     row["d_surface_sampled_relative"] = r["d_surface_sampled_relative"]
+                    row["map_seconds"] = r["parameterization"]["seconds"]
+                    row["lambda"] = (r["parameterization"].get("flatten") or {}).get("lambda")
                 rows.append(row)
     write(rows, args)
 
@@ -85,25 +143,29 @@ def write(rows, args):
         machine_line(),
         f"One run of `bash benchmarks/external.sh`: FreeSurfer's fsaverage5 surfaces from nilearn {NILEARN}'s wheel on PyPI",
         f"and the Conte69 32k midthickness surfaces from BrainSpace {BRAINSPACE}'s wheel",
-        "(downloaded at run time, not committed), both hemispheres, and pymeshlab's sample bone (`tests/sample_meshes/bone.ply`",
-        "of pymeshlab 2025.7.post1), then",
+        "(downloaded at run time, not committed), both hemispheres, the Conte69 left hemisphere without its medial wall",
+        "(an open sheet, BrainSpace's mask), two synthetic long bones (marching cubes, `LONG_BONES` in the script)",
+        "and pymeshlab's sample bone (`tests/sample_meshes/bone.ply` of pymeshlab 2025.7.post1), then",
         f"`capmesh remesh SURFACE --faces N` (N = {args.faces.replace(',', ', ')}) with the default options, timed around the",
         "whole command. Bars of issue 26 (set for 5000 faces): d_face_rel <= 0.035, mean smallest angle >= 48,",
         "<= 2% of faces below 30 degrees, smallest angle >= 15, no more self-intersecting faces than the input;",
         "`misses` names the bars a row misses. d_surf: symmetric face-sampled mean distance over the bounding-box diagonal.",
+        "map s: the parameterization's seconds within the command; lambda: the quasi-conformal factor of the initial map",
+        "(closed surfaces 0.2, raised by the fallback when the transport stalls; open surfaces' composite map 0.5).",
         "",
         *bar_counts(rows, args.faces),
         "",
-        "| surface | input faces | target | faces | d_face_rel | mean min angle | % < 30 deg | min angle | self-x faces (input) | d_surf | mean \\|d_area\\| | seconds | misses |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
+        "| surface | input faces | target | faces | d_face_rel | mean min angle | % < 30 deg | min angle | self-x faces (input) | d_surf | mean \\|d_area\\| | lambda | map s | seconds | misses |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
     ]
     write_report(
         "external",
         rows,
         head,
         lambda r: f"| {r['mesh']} | {r['input_faces']} | {r['target']} | {bar_cells(r)} | "
-        f"{r['d_surface_sampled_relative']:.2e} | {r['mean_abs_area_distortion']:.4f} | {r['seconds']:.2f} | {', '.join(r['misses']) or '-'} |",
-        lambda r: f"| {r['mesh']} | | {r['target']} | | | | | | | | | | exit {r['exit']}: {r['error']} |",
+        f"{r['d_surface_sampled_relative']:.2e} | {r['mean_abs_area_distortion']:.4f} | {r['lambda'] if r['lambda'] is not None else '-'} | "
+        f"{r['map_seconds']:.2f} | {r['seconds']:.2f} | {', '.join(r['misses']) or '-'} |",
+        lambda r: f"| {r['mesh']} | | {r['target']} | | | | | | | | | | | | exit {r['exit']}: {r['error']} |",
     )
 
 

@@ -19,9 +19,11 @@
 //!   an absolute determinant of 1e-6 (an area), kept here to give MeshLab's count: on a mesh
 //!   whose edges are much shorter than 1e-3 units, faces that share a vertex are then
 //!   seldom found to cross (scale such a mesh up to count them);
-//! - 0: a closed triangle-triangle test (touching counts), exact in sign on
-//!   `f64` orientations, with a planar test for coplanar pieces (vcglib uses Möller's
-//!   interval test, which also counts touching triangles).
+//! - 0: a closed triangle-triangle test (touching counts) on `f64` orientations, with a
+//!   planar test for coplanar pieces (vcglib uses Möller's interval test, which also counts
+//!   touching triangles); a face whose corners are within a relative 1e-12 of the other's
+//!   plane is coplanar with it ([`COPLANAR`]), so that the rounding residues of a flat
+//!   region's faces do not make them touch.
 //!
 //! Candidate pairs come from a uniform grid of the faces' bounding boxes (cells about twice
 //! the mean face extent, stored as sorted `(cell, face)` pairs, not as a hash map). Each pair
@@ -36,7 +38,8 @@
 //! with the remeshes of the area-only stage (bird skull, hand and bunny: 247, 227 and 96 in
 //! both) and again with those of the shape stage (0, 48 and 0; face 24, hippocampus sheet 6,
 //! 48k brain 4); the one difference is the hippocampus sheet input, 769 here against 737,
-//! whose 28 zero-area faces the two triangle tests treat differently.
+//! whose 28 zero-area faces the two triangle tests treat differently. On two synthetic
+//! marching-cubes long bones (`benchmarks/external.py`) both count none.
 
 use crate::mesh::geometry::{cross, dot, sub};
 use crate::mesh::TriMesh;
@@ -75,6 +78,8 @@ pub fn faces_intersect(mesh: &TriMesh, f: usize, g: usize) -> bool {
 /// Whether the faces `a` and `b` (corner indices; `a` the one of lower face index) with corner
 /// positions `position` intersect by MeshLab's test ([`faces_intersect`]).
 pub(crate) fn face_pair_intersects(a: [u32; 3], b: [u32; 3], position: impl Fn(u32) -> [f64; 3]) -> bool {
+    let p = a.map(&position);
+    let q = b.map(&position);
     let mut shared = 0;
     let mut at = (0, 0);
     for i in 0..3 {
@@ -89,8 +94,6 @@ pub(crate) fn face_pair_intersects(a: [u32; 3], b: [u32; 3], position: impl Fn(u
         // Edge neighbours never intersect; a duplicated face always does.
         return shared >= 3;
     }
-    let p = a.map(&position);
-    let q = b.map(&position);
     match shared {
         0 => triangles_intersect(p, q),
         _ => {
@@ -210,6 +213,14 @@ fn key(x: i64, y: i64, z: i64) -> u64 {
     ((x as u64) << 42) | ((y as u64) << 21) | z as u64
 }
 
+/// A point closer to a triangle's plane than this fraction of its distance from the
+/// triangle's first corner is in the plane ([`in_plane`]): the rounding residue of coplanar
+/// points. Without it, two faces of a flat strip of a marching-cubes surface (coordinates on a
+/// voxel grid) left orientation residues of 3e-20, an edge of one then met the other "on" it,
+/// and a 25k-face long bone that MeshLab finds no crossing in had 1118 self-intersecting
+/// faces.
+const COPLANAR: f64 = 1e-12;
+
 /// Signed volume (times 6) of the tetrahedron `abcd`: positive when `d` is on the side of
 /// `abc`'s normal.
 #[inline]
@@ -217,8 +228,19 @@ fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
     dot(cross(sub(b, a), sub(c, a)), sub(d, a))
 }
 
+/// Whether `d` lies in the plane of triangle `t` within [`COPLANAR`] (never for a triangle
+/// without area, which has no plane).
+fn in_plane(t: [[f64; 3]; 3], d: [f64; 3]) -> bool {
+    let (n, w) = (cross(sub(t[1], t[0]), sub(t[2], t[0])), sub(d, t[0]));
+    let (volume, nn) = (dot(n, w), dot(n, n));
+    nn > 0.0 && volume * volume <= COPLANAR * COPLANAR * nn * dot(w, w)
+}
+
 /// Closed intersection test of triangles `p` and `q` (touching counts).
 pub fn triangles_intersect(p: [[f64; 3]; 3], q: [[f64; 3]; 3]) -> bool {
+    if q.iter().all(|&x| in_plane(p, x)) {
+        return coplanar_triangles_meet(p, q);
+    }
     let dq = q.map(|x| orient(p[0], p[1], p[2], x));
     if dq.iter().all(|&d| d > 0.0) || dq.iter().all(|&d| d < 0.0) {
         return false;
@@ -242,13 +264,23 @@ pub fn triangles_intersect(p: [[f64; 3]; 3], q: [[f64; 3]; 3]) -> bool {
     false
 }
 
+/// Closed test of coplanar triangles `p` (with an area) and `q`, projected along the axis
+/// nearest to `p`'s normal: an edge of one meets an edge of the other, or one holds a corner
+/// of the other.
+fn coplanar_triangles_meet(p: [[f64; 3]; 3], q: [[f64; 3]; 3]) -> bool {
+    let axis = drop_axis(p);
+    let (p2, q2) = (p.map(|x| proj(x, axis)), q.map(|x| proj(x, axis)));
+    (0..3).any(|i| (0..3).any(|j| segments_meet_2d(p2[i], p2[(i + 1) % 3], q2[j], q2[(j + 1) % 3]))) || point_in_triangle_2d(q2[0], p2) || point_in_triangle_2d(p2[0], q2)
+}
+
 /// Closed test of segment `ab` against triangle `t`.
 fn segment_meets_triangle(a: [f64; 3], b: [f64; 3], t: [[f64; 3]; 3]) -> bool {
     let (da, db) = (orient(t[0], t[1], t[2], a), orient(t[0], t[1], t[2], b));
-    if (da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0) {
+    let coplanar = (da == 0.0 && db == 0.0) || (in_plane(t, a) && in_plane(t, b));
+    if !coplanar && ((da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0)) {
         return false;
     }
-    if da == 0.0 && db == 0.0 {
+    if coplanar {
         // The segment lies in the triangle's plane.
         let axis = drop_axis(t);
         let (a2, b2) = (proj(a, axis), proj(b, axis));
@@ -369,6 +401,21 @@ mod tests {
         for mesh in [icosphere(4), uv_sphere(30, 40), torus(1.0, 0.3, 40, 20)] {
             assert_eq!(count_self_intersecting_faces(&mesh), 0);
         }
+    }
+
+    #[test]
+    fn coplanar_faces_of_a_voxel_strip_cross_only_where_they_overlap() {
+        // Two faces of a flat strip of a marching-cubes surface (a long bone's shaft, voxel
+        // size 0.08), apart along x: the orientations of one's corners against the other's
+        // plane are 0 or rounding residues of 3e-20, and they were once counted as crossing.
+        let (p, q) = ([[3.76, 1.6, 1.234472], [3.84, 1.52, 1.269478], [3.76, 1.52, 1.269478]], [[3.92, 1.6, 1.234472], [4.0, 1.52, 1.269478], [3.92, 1.52, 1.269478]]);
+        assert!(!triangles_intersect(p, q) && !triangles_intersect(q, p));
+        // The same plane's triangles moved onto each other do cross, and an edge of one on a
+        // corner of the other touches it.
+        let onto = q.map(|x| [x[0] - 0.12, x[1], x[2]]);
+        assert!(triangles_intersect(p, onto) && triangles_intersect(onto, p));
+        let touching = q.map(|x| [x[0] - 0.08, x[1], x[2]]);
+        assert!(triangles_intersect(p, touching));
     }
 
     #[test]
