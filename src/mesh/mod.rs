@@ -2,6 +2,7 @@
 //! characteristic), geometry (areas, angles), validation and small repairs, and procedural
 //! shapes used by tests and benchmarks.
 
+pub(crate) mod checks;
 pub(crate) mod error;
 pub(crate) mod fasthash;
 pub mod geometry;

@@ -11,7 +11,8 @@
 use crate::mesh::fasthash::FastMap;
 use crate::mesh::geometry::{cross, dot, norm, sub};
 use crate::mesh::unionfind::UnionFind;
-use crate::mesh::topology::{check_degenerate, check_duplicates, check_indices, check_not_empty, corner_fans, edge_faces, face_neighbours};
+use crate::mesh::checks::{check_degenerate, check_duplicates, check_indices, check_not_empty};
+use crate::mesh::topology::{corner_fans, edge_faces, face_neighbours};
 use crate::mesh::{MeshError, TriMesh};
 
 /// `old_to_new` value of a vertex that was removed (unreferenced after the repair).

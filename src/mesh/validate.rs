@@ -19,7 +19,8 @@ use crate::mesh::geometry::{norm, sub, triangle_area};
 use crate::mesh::repair::{
     coincident_vertices, default_weld_tolerance, zero_area_faces, DEFAULT_ZERO_AREA_REL_TOL,
 };
-use crate::mesh::topology::{check_indices, check_not_empty, Topology};
+use crate::mesh::checks::{check_indices, check_not_empty};
+use crate::mesh::topology::Topology;
 use crate::mesh::TriMesh;
 
 /// The two kinds of surface capmesh maps onto a spherical cap.
