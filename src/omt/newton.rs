@@ -59,6 +59,18 @@ fn logarithmic_residual(mass: &[f64], tau: &[f64]) -> Vec<f64> {
     r
 }
 
+/// A continuation segment ([`OtSolver::solve`]) gives up, and the continuation takes a shorter
+/// one, after this many accepted Newton steps in a row each shorter than [`FALLING_STEP`] and
+/// than the step before: such a segment was failing. On synthetic long bones
+/// (`benchmarks/external.py`) the failing segments' steps fell by a factor 2-8 each until the
+/// solve stalled at `OtOptions::min_step` 3-5 steps later, while the segments that succeeded
+/// took one or two short steps before a full one (docs/method.md, "2. Logarithmic and stale
+/// Newton steps, continuation").
+const FALLING_STEPS: usize = 2;
+
+/// See [`FALLING_STEPS`].
+const FALLING_STEP: f64 = 1.0 / 16.0;
+
 /// Fraction of new edges above which the Newton matrices' kept pattern restarts from the
 /// current edges instead of growing (see [`OtSolver::update_pattern`]).
 const MOVING_PATTERN: f64 = 0.02;
@@ -257,7 +269,7 @@ impl<'d> OtSolver<'d> {
         let mut report = OtReport { min_step: 1.0, ..Default::default() };
         let saved = self.tri.clone();
         let initial = self.current.take();
-        let mut cells = match self.newton(&tau, initial, options, options.max_iterations, &mut report, progress) {
+        let mut cells = match self.newton(&tau, initial, options, options.max_iterations, false, &mut report, progress) {
             Ok(c) => c,
             Err(NewtonFailure::Cancelled(c)) => return Err(c.into()),
             Err(NewtonFailure::Linear(e)) => return Err(e.into()),
@@ -301,7 +313,7 @@ impl<'d> OtSolver<'d> {
             tau_t.iter_mut().for_each(|x| *x *= disk / s);
             let saved = self.tri.clone();
             let step_options = OtOptions { tolerance: if t_try < 1.0 { options.tolerance.max(1e-4) } else { options.tolerance }, ..options.clone() };
-            match self.newton(&tau_t, None, &step_options, 40, report, progress) {
+            match self.newton(&tau_t, None, &step_options, 40, true, report, progress) {
                 Ok(cells) => {
                     report.continuation_steps += 1;
                     t = t_try;
@@ -323,13 +335,16 @@ impl<'d> OtSolver<'d> {
         }
     }
 
-    /// Damped Newton towards `tau` from the current weights.
+    /// Damped Newton towards `tau` from the current weights; a continuation segment
+    /// (`segment`) also gives up on [`FALLING_STEPS`] falling short steps.
+    #[allow(clippy::too_many_arguments)]
     fn newton(
         &mut self,
         tau: &[f64],
         initial: Option<CellIntegrals>,
         options: &OtOptions,
         max_iterations: usize,
+        segment: bool,
         report: &mut OtReport,
         progress: &dyn Progress,
     ) -> Result<CellIntegrals, NewtonFailure> {
@@ -340,7 +355,7 @@ impl<'d> OtSolver<'d> {
         let min_m0 = cells.mass.iter().cloned().fold(f64::INFINITY, f64::min);
         let eps = 0.5 * min_tau.min(min_m0.max(0.0));
         let err0 = err.max(options.tolerance);
-        let mut small_steps = 0;
+        let (mut small_steps, mut falling, mut last_alpha) = (0, 0, 1.0);
         // Whether the last accepted step went the full length (either direction, or a step
         // with the last factorization), so that the solver's factorization is of a Hessian
         // close to the current one.
@@ -400,7 +415,9 @@ impl<'d> OtSolver<'d> {
             quadratic = alpha == 1.0;
             // Many tiny steps in a row: this path is hopeless, let the caller continue.
             small_steps = if alpha < 1e-3 { small_steps + 1 } else { 0 };
-            if small_steps >= 4 {
+            falling = if alpha < FALLING_STEP && alpha < last_alpha { falling + 1 } else { 0 };
+            last_alpha = alpha;
+            if small_steps >= 4 || (segment && falling >= FALLING_STEPS) {
                 return Err(NewtonFailure::Stalled { iteration: it, error: err });
             }
         }
