@@ -214,7 +214,7 @@ fn key(x: i64, y: i64, z: i64) -> u64 {
 }
 
 /// A point closer to a triangle's plane than this fraction of its distance from the
-/// triangle's first corner is in the plane ([`in_plane`]): the rounding residue of coplanar
+/// triangle's first corner is in the plane ([`plane_offsets`]): the rounding residue of coplanar
 /// points. Without it, two faces of a flat strip of a marching-cubes surface (coordinates on a
 /// voxel grid) left orientation residues of 3e-20, an edge of one then met the other "on" it,
 /// and a 25k-face long bone that MeshLab finds no crossing in had 1118 self-intersecting
@@ -228,24 +228,32 @@ fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
     dot(cross(sub(b, a), sub(c, a)), sub(d, a))
 }
 
-/// Whether `d` lies in the plane of triangle `t` within [`COPLANAR`] (never for a triangle
-/// without area, which has no plane).
-fn in_plane(t: [[f64; 3]; 3], d: [f64; 3]) -> bool {
-    let (n, w) = (cross(sub(t[1], t[0]), sub(t[2], t[0])), sub(d, t[0]));
-    let (volume, nn) = (dot(n, w), dot(n, n));
-    nn > 0.0 && volume * volume <= COPLANAR * COPLANAR * nn * dot(w, w)
+/// [`orient`] of each of `points` against triangle `t` (its normal computed once), and
+/// whether every point lies in `t`'s plane within [`COPLANAR`] (never for a triangle without
+/// area, which has no plane).
+fn plane_offsets<const N: usize>(t: [[f64; 3]; 3], points: [[f64; 3]; N]) -> ([f64; N], bool) {
+    let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+    let nn = dot(n, n);
+    let mut in_plane = nn > 0.0;
+    let volumes = points.map(|d| {
+        let w = sub(d, t[0]);
+        let volume = dot(n, w);
+        in_plane &= volume * volume <= COPLANAR * COPLANAR * nn * dot(w, w);
+        volume
+    });
+    (volumes, in_plane)
 }
 
 /// Closed intersection test of triangles `p` and `q` (touching counts).
 pub fn triangles_intersect(p: [[f64; 3]; 3], q: [[f64; 3]; 3]) -> bool {
-    if q.iter().all(|&x| in_plane(p, x)) {
+    let (dq, coplanar) = plane_offsets(p, q);
+    if coplanar {
         return coplanar_triangles_meet(p, q);
     }
-    let dq = q.map(|x| orient(p[0], p[1], p[2], x));
     if dq.iter().all(|&d| d > 0.0) || dq.iter().all(|&d| d < 0.0) {
         return false;
     }
-    let dp = p.map(|x| orient(q[0], q[1], q[2], x));
+    let (dp, _) = plane_offsets(q, p);
     if dp.iter().all(|&d| d > 0.0) || dp.iter().all(|&d| d < 0.0) {
         return false;
     }
@@ -257,6 +265,7 @@ pub fn triangles_intersect(p: [[f64; 3]; 3], q: [[f64; 3]; 3]) -> bool {
             return true;
         }
     }
+    // All exactly 0 only when `p` has no area (with an area they are in its plane, above).
     if dq.iter().all(|&d| d == 0.0) {
         let axis = drop_axis(p);
         return point_in_triangle_2d(proj(q[0], axis), p.map(|x| proj(x, axis))) || point_in_triangle_2d(proj(p[0], axis), q.map(|x| proj(x, axis)));
@@ -275,8 +284,8 @@ fn coplanar_triangles_meet(p: [[f64; 3]; 3], q: [[f64; 3]; 3]) -> bool {
 
 /// Closed test of segment `ab` against triangle `t`.
 fn segment_meets_triangle(a: [f64; 3], b: [f64; 3], t: [[f64; 3]; 3]) -> bool {
-    let (da, db) = (orient(t[0], t[1], t[2], a), orient(t[0], t[1], t[2], b));
-    let coplanar = (da == 0.0 && db == 0.0) || (in_plane(t, a) && in_plane(t, b));
+    let ([da, db], in_plane) = plane_offsets(t, [a, b]);
+    let coplanar = (da == 0.0 && db == 0.0) || in_plane;
     if !coplanar && ((da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0)) {
         return false;
     }
