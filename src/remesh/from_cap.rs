@@ -66,6 +66,10 @@ pub(crate) struct FromCap {
     /// remesh faces): every
     /// start has them, so they do not send [`from_best_start`] to the next one.
     pub slivers_at_rim: usize,
+    /// Faces below 15 degrees at a closed surface's merged bottom vertex
+    /// ([`shape::uncross::slivers_at_bottom`]): counted with the slivers, which they are not
+    /// in the untangling's report.
+    pub slivers_at_bottom: usize,
     /// Which vertices the stages kept in place (the rim, the bottom).
     pub fixed: Vec<bool>,
     /// The least-squares vertex placement (made last, [`super::fit`]).
@@ -88,13 +92,18 @@ const SIZED_MEAN_ANGLE_DEG: f64 = 46.0;
 /// smallest angle.
 pub(crate) fn meets_bar(r: &FromCap) -> bool {
     let bar = if r.shape.sizing == super::sizing::Sizing::Uniform { GOOD_MEAN_ANGLE_DEG } else { SIZED_MEAN_ANGLE_DEG };
-    own_crossings(r) == 0 && r.shape.uncross.slivers_after <= r.slivers_at_rim && r.mean_min_angle_deg >= bar
+    own_crossings(r) == 0 && slivers(r) <= r.slivers_at_rim && r.mean_min_angle_deg >= bar
+}
+
+/// The remesh's slivers: the untangling's and those at a closed surface's bottom vertex.
+fn slivers(r: &FromCap) -> usize {
+    r.shape.uncross.slivers_after + r.slivers_at_bottom
 }
 
 /// The order in which remeshes are preferred (lowest first): crossing faces of their own, then
 /// slivers, then the higher mean smallest angle.
 pub(crate) fn rank(r: &FromCap) -> (usize, usize, f64) {
-    (own_crossings(r), r.shape.uncross.slivers_after, -r.mean_min_angle_deg)
+    (own_crossings(r), slivers(r), -r.mean_min_angle_deg)
 }
 
 /// The largest punctured quad, in mean remesh faces, whose rim ring and bottom disk the shape
@@ -133,7 +142,7 @@ fn spreads_areas(r: &FromCap, uniform: bool) -> bool {
 /// faces of their own, slivers, then whether uniform areas are spread more than
 /// [`RETRY_AREA_SPREAD`], then the higher mean smallest angle.
 pub(crate) fn end_rank(r: &FromCap, uniform: bool) -> (usize, usize, bool, f64) {
-    (own_crossings(r), r.shape.uncross.slivers_after, spreads_areas(r, uniform), -r.mean_min_angle_deg)
+    (own_crossings(r), slivers(r), spreads_areas(r, uniform), -r.mean_min_angle_deg)
 }
 
 /// Crossing faces not at the input's own crossings.
@@ -340,7 +349,8 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
     let mean_min_angle_deg = crate::metrics::angles::angle_quality_of(&positions, &faces).mean_min_angle_deg;
     let (_, d_face_relative) = crate::metrics::remeshing::area_deviation(&positions, &faces);
     let slivers_at_rim = if shaped && closed { shape::uncross::slivers_on_fixed_edges(&positions, &faces, &has_plane, &fixed) } else { 0 };
-    Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds, mean_min_angle_deg, d_face_relative, slivers_at_rim, fixed, fit: super::FitReport::default() })
+    let slivers_at_bottom = if shaped && closed { shape::uncross::slivers_at_bottom(&positions, &faces, &has_plane) } else { 0 };
+    Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds, mean_min_angle_deg, d_face_relative, slivers_at_rim, slivers_at_bottom, fixed, fit: super::FitReport::default() })
 }
 
 #[cfg(test)]
@@ -362,6 +372,7 @@ mod tests {
             mean_min_angle_deg: mean_angle,
             d_face_relative: d_face,
             slivers_at_rim: 0,
+            slivers_at_bottom: 0,
             fixed: Vec::new(),
             fit: Default::default(),
         }
@@ -378,5 +389,18 @@ mod tests {
         assert!(!end_worth_retrying(&made(48.5, 0.2), false));
         assert!(end_rank(&made(48.2, 0.03), true) < end_rank(&made(49.0, 0.049), true));
         assert!(end_rank(&made(49.0, 0.03), true) < end_rank(&made(48.2, 0.03), true));
+    }
+
+    /// A sliver at a closed surface's bottom vertex misses the bar like any other (the next
+    /// start and the other end are tried), and ranks a remesh below one without it.
+    #[test]
+    fn a_sliver_at_the_bottom_misses_the_bar() {
+        let mut thin = made(49.0, 0.02);
+        thin.slivers_at_bottom = 1;
+        assert!(meets_bar(&made(49.0, 0.02)));
+        assert!(!meets_bar(&thin));
+        assert!(end_worth_retrying(&thin, true));
+        assert!(rank(&made(48.1, 0.02)) < rank(&thin));
+        assert!(end_rank(&made(48.1, 0.02), true) < end_rank(&thin, true));
     }
 }

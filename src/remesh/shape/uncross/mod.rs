@@ -226,6 +226,20 @@ fn is_sliver(position: &[[f64; 3]], has_plane: &[bool], f: [u32; 3]) -> bool {
     }
 }
 
+/// The faces of a closed surface's merged bottom vertex (no planar point, `super::bottom`)
+/// with an angle below [`MIN_ANGLE`]: slivers that [`uncross`] does not count, since no move
+/// in the plane reaches the bottom, and that nothing later mends.
+pub(crate) fn slivers_at_bottom(position: &[[f64; 3]], faces: &[[u32; 3]], has_plane: &[bool]) -> usize {
+    faces
+        .iter()
+        .filter(|f| f.iter().any(|&u| !has_plane[u as usize]))
+        .filter(|f| {
+            let p = f.map(|u| position[u as usize]);
+            smallest_angle(p[0], p[1], p[2]) < MIN_ANGLE.to_radians()
+        })
+        .count()
+}
+
 /// The slivers ([`is_sliver`]) of `faces` whose shortest edge joins two vertices that stay
 /// (`fixed`): no move or flip of the shape stage changes that edge.
 pub(crate) fn slivers_on_fixed_edges(position: &[[f64; 3]], faces: &[[u32; 3]], has_plane: &[bool], fixed: &[bool]) -> usize {
@@ -315,5 +329,17 @@ mod tests {
         let mut no_plane = has_plane.clone();
         no_plane[2] = false;
         assert_eq!(slivers_on_fixed_edges(&position, &faces, &no_plane, &[true, true, false, false, false, false]), 1);
+    }
+
+    /// Faces of a bottom vertex (no planar point) below 15 degrees are counted, whatever their
+    /// other corners; the same faces with planar points everywhere, or fat, are not.
+    #[test]
+    fn slivers_at_the_bottom_are_counted() {
+        let position = vec![[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.05, 2.0, 0.0], [0.05, -2.0, 0.0], [1.0, 1.0, 0.0], [1.0, -1.0, 0.0]];
+        let faces = vec![[0, 1, 2], [1, 0, 3], [1, 5, 4]];
+        assert_eq!(slivers_at_bottom(&position, &faces, &[true; 6]), 0);
+        assert_eq!(slivers_at_bottom(&position, &faces, &[true, true, false, true, true, true]), 1);
+        assert_eq!(slivers_at_bottom(&position, &faces, &[false, true, true, true, true, true]), 2);
+        assert_eq!(slivers_at_bottom(&position, &faces, &[true, true, true, true, false, true]), 0);
     }
 }
