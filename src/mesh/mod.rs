@@ -9,6 +9,7 @@ pub mod geometry;
 pub(crate) mod decimate;
 pub mod repair;
 pub mod shapes;
+pub mod short_edges;
 pub mod subdivide;
 pub mod topology;
 mod trimesh;

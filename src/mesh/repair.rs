@@ -426,7 +426,7 @@ pub fn keep_main_component(mesh: &TriMesh) -> Option<MainComponent> {
 
 /// Apply a vertex-to-representative map: remap faces (dropping degenerate ones if asked, and
 /// always those with out-of-range indices), then drop unreferenced vertices.
-fn compact(mesh: &TriMesh, rep: &[u32], drop_degenerate: bool) -> Welded {
+pub(crate) fn compact(mesh: &TriMesh, rep: &[u32], drop_degenerate: bool) -> Welded {
     let n = mesh.n_vertices();
     let merged_vertices = rep
         .iter()

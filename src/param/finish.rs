@@ -93,6 +93,7 @@ pub(crate) fn finish(mesh: &TriMesh, s: Searched<'_>, options: &ParamOptions, pr
         n_faces: mesh.n_faces(),
         welded_vertices: welded.merged_vertices,
         split_vertices: welded.split_vertices,
+        collapsed_short_edges: 0,
         r_star: spherical.then_some(radius),
         z_star: spherical.then(|| z_star_of_radius(radius)),
         quality: MapQuality::Unrated,

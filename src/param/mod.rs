@@ -70,6 +70,25 @@ fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress:
     if multilevel::applies(&prepared, options) {
         return multilevel::parameterize_multilevel(mesh, &prepared, options, progress);
     }
+    match map_prepared(mesh, &prepared, options, progress, start) {
+        // A transport that cannot reach the masses of a degenerate triangulation's needles:
+        // mapped again with its short edges collapsed (docs/method.md, "Degenerate
+        // triangulations").
+        Err(e) if is_precision_failure(&e) => match prepare::without_short_edges(&prepared)? {
+            Some((cleaned, edges)) => {
+                let mut map = map_prepared(mesh, &cleaned, options, progress, start).map_err(|_| e)?;
+                map.report.collapsed_short_edges = edges;
+                map.report.seconds = start.elapsed().as_secs_f64();
+                Ok(map)
+            }
+            None => Err(e),
+        },
+        result => result,
+    }
+}
+
+/// [`parameterize`] of the prepared mesh, with the lambda fallbacks of a closed surface.
+fn map_prepared(mesh: &TriMesh, prepared: &Prepared, options: &ParamOptions, progress: &dyn Progress, start: Instant) -> Result<CapMap, Error> {
     // Every attempt not returned, the best poor map so far and the last transport failure.
     let mut attempts = Vec::new();
     let mut best: Option<(f64, CapMap)> = None;
@@ -77,7 +96,7 @@ fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress:
     let mut attempt = options.clone();
     loop {
         let lambda = attempt.closed.flatten.lambda;
-        match parameterize_at_lambda(mesh, &prepared, &attempt, progress) {
+        match parameterize_at_lambda(mesh, prepared, &attempt, progress) {
             Ok(map) if !is_poor(&map) => return Ok(with_fallbacks(map, attempts, start)),
             Ok(map) => {
                 let d = map.report.area_distortion.mean_abs;

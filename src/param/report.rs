@@ -99,6 +99,10 @@ pub struct ParamReport {
     /// Copies made of vertices where welding left the surface touching itself, one per fan
     /// beyond the first ([`crate::mesh::repair::split_pinched_vertices`]).
     pub split_vertices: usize,
+    /// Edges shorter than 5% of the mean edge collapsed before mapping, after the transport
+    /// stalled on the mesh as given (a degenerate triangulation's needles; 0 otherwise,
+    /// [`crate::mesh::short_edges`]).
+    pub collapsed_short_edges: usize,
     /// Optimal (or fixed) disk radius; `None` for the planar disk.
     pub r_star: Option<f64>,
     /// Cap bound `Z*`; `None` for the planar disk.

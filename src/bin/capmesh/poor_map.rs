@@ -11,7 +11,8 @@ use std::path::Path;
 const POOR_AREA_DISTORTION: f64 = capmesh::param::POOR_MAP_AREA_DISTORTION;
 
 /// Say on stderr when a map is fold-free but far from area preserving, rather than let a poor
-/// result pass silently, and when a closed surface needed a larger `lambda` than asked.
+/// result pass silently, when a closed surface needed a larger `lambda` than asked, and when
+/// short edges were collapsed before mapping.
 pub(crate) fn warn_if_poor(input: &Path, r: &capmesh::ParamReport) {
     if let capmesh::param::FlattenReport::Closed(used) = &r.flatten {
         for tried in &r.lambda_fallbacks {
@@ -25,6 +26,14 @@ pub(crate) fn warn_if_poor(input: &Path, r: &capmesh::ParamReport) {
                 used.lambda
             );
         }
+    }
+    if r.collapsed_short_edges > 0 {
+        eprintln!(
+            "warning: {}: mapped with {} edges shorter than 5% of the mean edge collapsed (the transport stalled on the \
+             triangulation's needles; a collapsed vertex shares its neighbour's point of the map; report: collapsed_short_edges)",
+            input.display(),
+            r.collapsed_short_edges
+        );
     }
     if r.domain == Domain::Adaptive && r.area_distortion.mean_abs > POOR_AREA_DISTORTION {
         eprintln!(
