@@ -13,6 +13,12 @@ on anatomical meshes that are not in the repository").
   long bone, 3022 faces, closed genus 0).
 - The Conte69 left hemisphere without its medial wall (BrainSpace's `conte69_32k_lh_mask.csv`):
   the cortex as an open disk-like sheet, as surface-based analyses use it.
+- Two segmentation surfaces of the MNI152 2009c template, which also ships inside nilearn's wheel
+  (nilearn/datasets/data/mni_icbm152_*.nii.gz, 1 mm voxels): the brain (grey + white matter
+  probability above 0.5) and the head (T1 above its 60th percentile), each its largest piece with
+  its cavities filled, padded, smoothed (Gaussian, 2 voxels) and cut by marching cubes at 0.5:
+  closed genus-0 surfaces of about 130k vertices, as a segmented MRI or CT gives them, mapped
+  through a decimated copy (docs/method.md section 20).
 - Two synthetic long bones (marching cubes of a capsule with rounded ends, scikit-image): a shaft
   5-6 times as long as it is wide, where an area-preserving map onto the sphere is anisotropic
   and its transport hardest to start (docs/method.md, "2. Logarithmic and stale Newton steps,
@@ -35,6 +41,7 @@ import zipfile
 import nibabel
 import numpy as np
 import pymeshlab
+from scipy import ndimage
 from skimage import measure
 
 from variants import bar_cells, bar_counts, machine_line, remesh_row, write_report
@@ -73,6 +80,30 @@ def long_bone(path, half_length, shaft, end, voxel):
     write_obj(path, vertices, faces)
 
 
+def segmentation_surface(path, mask):
+    """The smoothed boundary of `mask`'s largest piece, cavities filled (see the module doc)."""
+    mask = np.pad(mask, 4)
+    labels, count = ndimage.label(mask)
+    sizes = ndimage.sum(mask, labels, range(1, count + 1))
+    piece = ndimage.binary_fill_holes(labels == 1 + int(np.argmax(sizes)))
+    vertices, faces, _, _ = measure.marching_cubes(ndimage.gaussian_filter(piece.astype(float), 2.0), 0.5, allow_degenerate=False)
+    write_obj(path, vertices, faces)
+
+
+def mni_surfaces(work, z):
+    """The MNI152 brain and head surfaces (see the module doc) from nilearn's wheel `z`: name -> path."""
+    def volume(name):
+        path = os.path.join(work, f"{name}.nii.gz")
+        with open(path, "wb") as out:
+            out.write(z.read(f"nilearn/datasets/data/mni_icbm152_{name}_tal_nlin_sym_09a_converted.nii.gz"))
+        return np.asarray(nibabel.load(path).get_fdata())
+    t1 = volume("t1")
+    paths = {"mni152_brain": os.path.join(work, "mni152_brain.obj"), "mni152_head": os.path.join(work, "mni152_head.obj")}
+    segmentation_surface(paths["mni152_brain"], volume("gm") + volume("wm") > 0.5)
+    segmentation_surface(paths["mni152_head"], t1 > np.percentile(t1, 60))
+    return paths
+
+
 def open_cortex(path, surface, mask):
     """The faces of the GIFTI `surface` whose three corners the CSV `mask` marks 1 (the cortex
     without the medial wall), unused vertices dropped."""
@@ -100,6 +131,7 @@ def surfaces(work):
             with open(path, "wb") as out:
                 out.write(gzip.decompress(z.read(f"nilearn/datasets/data/fsaverage5/{name}.gii.gz")))
             paths[name] = path
+        paths.update(mni_surfaces(work, z))
     with zipfile.ZipFile(wheel(work, f"brainspace=={BRAINSPACE}")) as z:
         for hemi in ["lh", "rh"]:
             path = os.path.join(work, f"conte69_32k_{hemi}.gii")
@@ -144,7 +176,8 @@ def write(rows, args):
         f"One run of `bash benchmarks/external.sh`: FreeSurfer's fsaverage5 surfaces from nilearn {NILEARN}'s wheel on PyPI",
         f"and the Conte69 32k midthickness surfaces from BrainSpace {BRAINSPACE}'s wheel",
         "(downloaded at run time, not committed), both hemispheres, the Conte69 left hemisphere without its medial wall",
-        "(an open sheet, BrainSpace's mask), two synthetic long bones (marching cubes, `LONG_BONES` in the script)",
+        "(an open sheet, BrainSpace's mask), the MNI152 template's brain and head segmented and cut by marching cubes",
+        "(`segmentation_surface` in the script, nilearn's wheel), two synthetic long bones (marching cubes, `LONG_BONES` in the script)",
         "and pymeshlab's sample bone (`tests/sample_meshes/bone.ply` of pymeshlab 2025.7.post1), then",
         f"`capmesh remesh SURFACE --faces N` (N = {args.faces.replace(',', ', ')}) with the default options, timed around the",
         "whole command. Bars of issue 26 (set for 5000 faces): d_face_rel <= 0.035, mean smallest angle >= 48,",

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Remesh quality on anatomical meshes that are not in the repository (FreeSurfer's fsaverage5 surfaces,
-# the Conte69 32k surfaces and its open cortex, synthetic long bones, pymeshlab's sample bone): builds capmesh, installs pymeshlab (benchmarks/variants.py's bars are shared)
+# the Conte69 32k surfaces and its open cortex, the MNI152 brain and head segmented, synthetic long bones, pymeshlab's sample bone): builds capmesh, installs pymeshlab (benchmarks/variants.py's bars are shared)
 # into benchmarks/.venv, downloads nilearn's and BrainSpace's wheels for their bundled surfaces, runs benchmarks/external.py
 # (arguments passed on, e.g. --faces 5000). Writes benchmarks/results/external.{md,json}.
 set -euo pipefail

@@ -298,7 +298,7 @@ typedef struct capmesh_v1_param_options {
   uint32_t multilevel_above;
   /**
    * Vertices of that decimated copy (at least; an eighth of the input's when more). Default
-   * 50000.
+   * 25000.
    */
   uint32_t coarse_vertices;
 } capmesh_v1_param_options;

@@ -50,7 +50,7 @@ def parameterize(
     puncture_end: str = "best",
     search_sites: int = 2000,
     multilevel_above: int = 100000,
-    coarse_vertices: int = 50000,
+    coarse_vertices: int = 25000,
 ) -> CapMap: ...
 def remesh(
     vertices: Vertices,

@@ -76,7 +76,7 @@ pub struct capmesh_v1_param_options {
     /// is prolonged to every vertex (near-linear time and memory); 0 = never. Default 100000.
     pub multilevel_above: u32,
     /// Vertices of that decimated copy (at least; an eighth of the input's when more). Default
-    /// 50000.
+    /// 25000.
     pub coarse_vertices: u32,
 }
 

@@ -226,9 +226,10 @@ fn is_sliver(position: &[[f64; 3]], has_plane: &[bool], f: [u32; 3]) -> bool {
     }
 }
 
-/// The faces of a closed surface's merged bottom vertex (no planar point, `super::bottom`)
-/// with an angle below [`MIN_ANGLE`]: slivers that [`uncross`] does not count, since no move
-/// in the plane reaches the bottom, and that nothing later mends.
+/// The faces at a closed surface's bottom (a corner without a planar point: the merged bottom
+/// vertex, `super::bottom`, or the bottom disk when it is not merged) with an angle below
+/// [`MIN_ANGLE`]: slivers that [`uncross`] does not count, since no move in the plane reaches
+/// the bottom, and that nothing later mends.
 pub(crate) fn slivers_at_bottom(position: &[[f64; 3]], faces: &[[u32; 3]], has_plane: &[bool]) -> usize {
     faces
         .iter()
