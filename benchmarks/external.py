@@ -44,6 +44,7 @@ import pymeshlab
 from scipy import ndimage
 from skimage import measure
 
+from meshlab_compare import write_obj
 from variants import bar_cells, bar_counts, machine_line, remesh_row, write_report
 
 NILEARN = "0.14.1"
@@ -51,13 +52,6 @@ BRAINSPACE = "0.3.0"
 SURFACES = ["pial_left", "pial_right", "white_left", "white_right", "infl_left", "infl_right"]
 # Synthetic long bones: name -> (shaft half-length, shaft radius, end radius, voxel size).
 LONG_BONES = {"long_bone_a": (4.0, 0.6, 1.3, 0.08), "long_bone_b": (5.0, 0.5, 1.2, 0.07)}
-
-
-def write_obj(path, vertices, faces):
-    """An OBJ of `vertices` (n x 3) and 0-based triangles `faces`."""
-    with open(path, "w") as out:
-        out.writelines(f"v {x:.6f} {y:.6f} {z:.6f}\n" for x, y, z in vertices)
-        out.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces)
 
 
 def long_bone(path, half_length, shaft, end, voxel):

@@ -8,6 +8,7 @@ pub(crate) mod hausdorff;
 pub(crate) mod remeshing;
 pub(crate) mod sampling;
 pub(crate) mod self_intersection;
+pub(crate) mod tri_tri;
 pub(crate) mod valence;
 
 pub use distortion::{angle_distortion, area_distortion, beltrami_abs, conformal_energy, conformal_energy_surface_weighted, Stats};

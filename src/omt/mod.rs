@@ -7,6 +7,7 @@ pub mod cells;
 pub(crate) mod coarse_level;
 pub(crate) mod density;
 pub(crate) mod newton;
+pub(crate) mod pattern;
 pub mod options;
 pub mod planar_transport;
 pub mod triangulation;
