@@ -214,14 +214,7 @@ fn key(x: i64, y: i64, z: i64) -> u64 {
 mod tests {
     use super::*;
     use crate::mesh::shapes::{icosphere, torus, uv_sphere};
-
-    fn random(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed;
-        move || {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::metrics::tri_tri::tests::random;
 
     fn brute_force(mesh: &TriMesh) -> Vec<u32> {
         let mut flagged = vec![false; mesh.n_faces()];

@@ -181,10 +181,12 @@ fn segments_meet_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool 
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn random(seed: u64) -> impl FnMut() -> f64 {
+    /// A pseudo-random sequence in [0, 1) (a 64-bit LCG), for the tests here and of
+    /// [`super::super::self_intersection`].
+    pub(crate) fn random(seed: u64) -> impl FnMut() -> f64 {
         let mut state = seed;
         move || {
             state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
