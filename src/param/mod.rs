@@ -70,21 +70,37 @@ fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress:
     if multilevel::applies(&prepared, options) {
         return multilevel::parameterize_multilevel(mesh, &prepared, options, progress);
     }
-    match map_prepared(mesh, &prepared, options, progress, start) {
-        // A transport that cannot reach the masses of a degenerate triangulation's needles:
-        // mapped again with its short edges collapsed (docs/method.md, "Degenerate
-        // triangulations").
-        Err(e) if is_precision_failure(&e) => match prepare::without_short_edges(&prepared)? {
-            Some((cleaned, edges)) => {
-                let mut map = map_prepared(mesh, &cleaned, options, progress, start).map_err(|_| e)?;
-                map.report.collapsed_short_edges = edges;
-                map.report.seconds = start.elapsed().as_secs_f64();
-                Ok(map)
-            }
-            None => Err(e),
-        },
-        result => result,
+    let first = map_prepared(mesh, &prepared, options, progress, start);
+    // A transport that cannot reach the masses of a degenerate triangulation's needles, or a
+    // map they leave folded or poor: mapped again with the short edges collapsed, and the
+    // better map kept (docs/method.md, "Degenerate triangulations").
+    let retry = match &first {
+        Err(e) => is_precision_failure(e),
+        Ok(map) => map.report.flipped_faces > 0 || is_poor(map),
+    };
+    if !retry {
+        return first;
     }
+    let Some((cleaned, edges)) = prepare::without_short_edges(&prepared)? else { return first };
+    let second = map_prepared(mesh, &cleaned, options, progress, start);
+    let timed = |mut map: CapMap, collapsed: usize| {
+        map.report.collapsed_short_edges = collapsed;
+        map.report.seconds = start.elapsed().as_secs_f64();
+        map
+    };
+    match (first, second) {
+        (_, Err(e @ Error::Cancelled(_))) => Err(e),
+        (Ok(a), Ok(b)) if collapse_rank(&b) < collapse_rank(&a) => Ok(timed(b, edges)),
+        (Ok(a), _) => Ok(timed(a, 0)),
+        (Err(_), Ok(b)) => Ok(timed(b, edges)),
+        (Err(e), Err(_)) => Err(e),
+    }
+}
+
+/// The order in which a map and its remap with short edges collapsed are preferred (lowest
+/// first): flipped faces, then poor, then mean |d_area|.
+fn collapse_rank(map: &CapMap) -> (usize, bool, f64) {
+    (map.report.flipped_faces, is_poor(map), map.report.area_distortion.mean_abs)
 }
 
 /// [`parameterize`] of the prepared mesh, with the lambda fallbacks of a closed surface.

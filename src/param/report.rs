@@ -100,7 +100,8 @@ pub struct ParamReport {
     /// beyond the first ([`crate::mesh::repair::split_pinched_vertices`]).
     pub split_vertices: usize,
     /// Edges shorter than 5% of the mean edge collapsed before mapping, after the transport
-    /// stalled on the mesh as given (a degenerate triangulation's needles; 0 otherwise,
+    /// stalled on the mesh as given or left its map folded or poor, and the map of the
+    /// collapsed mesh was better (a degenerate triangulation's needles; 0 otherwise,
     /// [`crate::mesh::short_edges`]).
     pub collapsed_short_edges: usize,
     /// Optimal (or fixed) disk radius; `None` for the planar disk.

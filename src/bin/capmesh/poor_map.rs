@@ -29,8 +29,9 @@ pub(crate) fn warn_if_poor(input: &Path, r: &capmesh::ParamReport) {
     }
     if r.collapsed_short_edges > 0 {
         eprintln!(
-            "warning: {}: mapped with {} edges shorter than 5% of the mean edge collapsed (the transport stalled on the \
-             triangulation's needles; a collapsed vertex shares its neighbour's point of the map; report: collapsed_short_edges)",
+            "warning: {}: mapped with {} edges shorter than 5% of the mean edge collapsed (the triangulation's needles stalled \
+             the transport or left the map folded or poor; a collapsed vertex shares its neighbour's point of the map; \
+             report: collapsed_short_edges)",
             input.display(),
             r.collapsed_short_edges
         );
