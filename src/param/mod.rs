@@ -49,7 +49,10 @@ use std::time::Instant;
 /// below double precision) or whose map is poor is mapped again with the next of
 /// [`ClosedOptions::lambda_fallbacks`] (see `lambda_fallback`);
 /// [`ParamReport::lambda_fallbacks`] lists the attempts not kept, `report.flatten` the
-/// `lambda` used, and `report.seconds` then covers every attempt.
+/// `lambda` used, and `report.seconds` then covers every attempt. A map that still stalls,
+/// folds or is poor is made again with the edges shorter than 5% of the mean edge collapsed
+/// (a degenerate triangulation's needles, [`crate::mesh::short_edges`]) and the better map
+/// kept ([`ParamReport::collapsed_short_edges`]).
 ///
 /// The work runs on a worker thread of rayon's pool; `progress` is called on this thread
 /// (see `crate::pool`).
