@@ -11,6 +11,7 @@
 
 use super::geometry::{cross, dot, norm, sub};
 use super::repair::{compact, Welded};
+use super::topology::is_boundary_vertex;
 use super::TriMesh;
 
 /// Passes over the short edges at most.
@@ -31,7 +32,7 @@ pub fn collapse_short_edges(mesh: &TriMesh, tolerance: f64) -> Welded {
             incident[v as usize].push(f as u32);
         }
     }
-    let boundary = boundary_vertices(mesh);
+    let boundary = is_boundary_vertex(mesh);
     let mut rep: Vec<u32> = (0..n as u32).collect();
     // Collapses make new short edges (a squeezed row's vertices meet the row beyond): passes
     // over the live short edges until one collapses none.
@@ -132,25 +133,6 @@ fn collapsible(faces: &[[u32; 3]], alive: &[bool], incident: &[Vec<u32>], bounda
         let after = cross(sub(q[1], q[0]), sub(q[2], q[0]));
         norm(before) == 0.0 || dot(before, after) > 0.0
     })
-}
-
-/// Whether each vertex of `mesh` is on an edge in one face only.
-fn boundary_vertices(mesh: &TriMesh) -> Vec<bool> {
-    let mut count = std::collections::HashMap::new();
-    for t in &mesh.faces {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *count.entry((a.min(b), a.max(b))).or_insert(0u32) += 1;
-        }
-    }
-    let mut boundary = vec![false; mesh.n_vertices()];
-    for ((a, b), c) in count {
-        if c == 1 {
-            boundary[a as usize] = true;
-            boundary[b as usize] = true;
-        }
-    }
-    boundary
 }
 
 #[cfg(test)]
