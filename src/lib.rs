@@ -66,7 +66,7 @@ pub use progress::{NoProgress, Progress, Stage};
 pub use remesh::shape::{ShapeOptions, ShapeReport};
 pub use remesh::sizing::Sizing;
 pub use remesh::transfer::carry_attribute;
-pub use remesh::{remesh, remesh_located, CapGrid, FitReport, Optimize, Pieces, Placement, RemeshOptions, RemeshReport};
+pub use remesh::{remesh, remesh_located, CapGrid, FitReport, Holes, Optimize, Pieces, Placement, RemeshOptions, RemeshReport};
 
 /// The README's examples, compiled as doc tests.
 #[cfg(doctest)]

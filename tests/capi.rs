@@ -463,6 +463,11 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     let (_, report) = run(&o);
     assert_eq!(report["fit"]["fitted"], false, "{}", report["fit"]);
     assert!(report["quality"]["d_surface_vertex_relative"].as_f64().unwrap() < 1e-9, "{}", report["quality"]);
+    // Holes are kept by default and filled when asked: the ventricle's base closed.
+    assert_eq!(o.fill_holes, 0);
+    o.fill_holes = 1;
+    let (_, report) = run(&o);
+    assert_eq!((&report["filled_holes"], &report["param"]["kind"]), (&serde_json::json!(1), &serde_json::json!("closed genus-0")), "{report}");
 
     let mut out = null_mut();
     let mut refused = |o: &capmesh_v1_remesh_options, words: &str| {
@@ -484,6 +489,9 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     let mut bad = capmesh_v1_remesh_options_default();
     bad.keep_creases = -1;
     refused(&bad, "keep_creases = -1");
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.fill_holes = 2;
+    refused(&bad, "fill_holes = 2");
     let mut bad = capmesh_v1_remesh_options_default();
     bad.placement = 2;
     refused(&bad, "placement = 2");

@@ -386,6 +386,11 @@ typedef struct capmesh_v1_remesh_options {
    * (0).
    */
   int32_t placement;
+  /**
+   * 1 = fill each hole of an open surface with a fan of faces and remesh the closed
+   * surface (the CLI's `--fill-holes`; the remesh is closed); 0 = keep the holes (default).
+   */
+  int32_t fill_holes;
 } capmesh_v1_remesh_options;
 
 /**

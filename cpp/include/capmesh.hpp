@@ -190,6 +190,12 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     keep_creases = on ? 1 : 0;
     return *this;
   }
+  /// Fill each hole of an open surface with a fan of faces and remesh the closed surface (the
+  /// CLI's `--fill-holes`).
+  RemeshOptions &with_fill_holes(bool on) {
+    fill_holes = on ? 1 : 0;
+    return *this;
+  }
   /// Leave the vertices on the input surface (true) instead of fitting the faces to it in the
   /// least-squares sense (the default; the CLI's `--placement`).
   RemeshOptions &with_vertices_on_surface(bool on) {

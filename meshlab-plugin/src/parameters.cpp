@@ -129,6 +129,11 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 		"Leave the vertices on the input surface. Off by default: they are moved along their "
 		"normals so that the faces fit the input in the least-squares sense (a smaller mean "
 		"distance to it; the faces of a remesh on the surface are chords, inside convex parts)."));
+	list.addParam(RichBool(
+		"FillHoles", d.fill_holes != 0, "Fill holes",
+		"Fill each hole of an open surface with a fan of faces and remesh the closed surface: for "
+		"a closed surface with a few faces missing (a segmentation cut by the volume's edge), "
+		"which a disk's map squeezes. Off by default: an open surface is remeshed open."));
 	addParamOptions(list, d.param);
 }
 
@@ -152,6 +157,7 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 	o.sizing_strength = double(list.getFloat("SizingStrength"));
 	o.keep_creases = list.getBool("KeepCreases") ? 1 : 0;
 	o.placement = list.getBool("VerticesOnSurface") ? CAPMESH_V1_PLACEMENT_ON_SURFACE : CAPMESH_V1_PLACEMENT_FITTED;
+	o.fill_holes = list.getBool("FillHoles") ? 1 : 0;
 	o.param = readParamOptions(list);
 	return o;
 }

@@ -82,6 +82,14 @@ def test_remesh_equals_cli(cli, tmp_path):
     with pytest.raises(capmesh.InputError, match="unknown vertex placement"):
         capmesh.remesh(v, f, faces_target=1000, placement="floating")
 
+    # The fill_holes keyword is the CLI's --fill-holes: the helmet's opening filled.
+    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet", "--fill-holes")
+    assert done.returncode == 0, done.stderr
+    filled = json.loads(report.read_text())
+    hv, hf, hrep = capmesh.remesh(v, f, faces_target=1000, fill_holes=True)
+    assert hrep["filled_holes"] == filled["filled_holes"] == 1 and expected["filled_holes"] == 0
+    assert hrep["quality"]["d_face"] == filled["d_face"]
+
 
 def test_lat_long_grid_and_options():
     v, f = capmesh.read_mesh(OPEN_MESH)

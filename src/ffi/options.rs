@@ -8,7 +8,7 @@ use crate::refine::Smoothing;
 use crate::flatten::closed::DEFAULT_LAMBDA;
 use crate::remesh::shape::ShapeOptions;
 use crate::remesh::sizing::Sizing;
-use crate::remesh::{CapGrid, Optimize, Placement, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
+use crate::remesh::{CapGrid, Holes, Optimize, Placement, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
 
 /// `capmesh_v1_param_options.domain`: the adaptive cap of the paper (default).
 pub const CAPMESH_V1_DOMAIN_ADAPTIVE: i32 = 0;
@@ -126,6 +126,9 @@ pub struct capmesh_v1_remesh_options {
     /// One of `CAPMESH_V1_PLACEMENT_*`: where the vertices are put at the end. Default fitted
     /// (0).
     pub placement: i32,
+    /// 1 = fill each hole of an open surface with a fan of faces and remesh the closed
+    /// surface (the CLI's `--fill-holes`; the remesh is closed); 0 = keep the holes (default).
+    pub fill_holes: i32,
 }
 
 /// The defaults documented on each field.
@@ -169,6 +172,7 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
             Placement::Fitted => CAPMESH_V1_PLACEMENT_FITTED,
             Placement::OnSurface => CAPMESH_V1_PLACEMENT_ON_SURFACE,
         },
+        fill_holes: i32::from(Holes::default() == Holes::Fill),
     }
 }
 
@@ -267,6 +271,11 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         CAPMESH_V1_PLACEMENT_ON_SURFACE => Placement::OnSurface,
         p => return Err(Failure::invalid_argument(format!("placement = {p} is not 0 (fitted) or 1 (on-surface)"))),
     };
+    let holes = match o.fill_holes {
+        0 => Holes::Keep,
+        1 => Holes::Fill,
+        h => return Err(Failure::invalid_argument(format!("fill_holes = {h} is not 0 (keep the holes) or 1 (fill them)"))),
+    };
     let sizing = match finite("sizing_strength", o.sizing_strength)? {
         s if s == 0.0 => Sizing::Uniform,
         s if s > 0.0 => Sizing::Curvature { strength: s },
@@ -289,5 +298,6 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         // The C ABI keeps the default: specks dropped, larger pieces refused.
         pieces: crate::remesh::Pieces::default(),
         placement,
+        holes,
     })
 }

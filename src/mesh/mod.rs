@@ -6,6 +6,7 @@ pub(crate) mod checks;
 pub(crate) mod error;
 pub(crate) mod fasthash;
 pub mod geometry;
+pub mod holes;
 pub(crate) mod decimate;
 pub mod repair;
 pub mod shapes;

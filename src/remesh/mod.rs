@@ -14,7 +14,7 @@ pub(crate) mod sizing;
 pub(crate) mod transfer;
 
 pub use fit::FitReport;
-pub use options::{CapGrid, Optimize, Pieces, Placement, RemeshOptions, DEFAULT_AREA_EQUALIZATION, MAX_GRID_FACES};
+pub use options::{CapGrid, Holes, Optimize, Pieces, Placement, RemeshOptions, DEFAULT_AREA_EQUALIZATION, MAX_GRID_FACES};
 
 use crate::refine::area_refine::AreaRefineReport;
 use crate::param::{parameterize, ParamReport, PunctureEnd};
@@ -68,6 +68,9 @@ pub struct RemeshReport {
     pub dropped_components: usize,
     /// The dropped pieces' share of the input's area.
     pub dropped_area_share: f64,
+    /// Holes of the input filled ([`Holes::Fill`]; 0 otherwise, and for a closed input); the
+    /// metrics are against the filled surface.
+    pub filled_holes: usize,
 }
 
 /// The planar positions of those `vertices` that lie on the rim (an open surface's boundary,
@@ -176,9 +179,15 @@ fn other_end(map: &CapMap) -> Option<PunctureEnd> {
 /// faces keep their order), and of several pieces the largest is remeshed when the others
 /// hold at most [`DROPPED_AREA_SHARE`] of the area ([`keep_main_component`]: marching cubes
 /// leaves such specks), or whatever they hold with [`Pieces::Largest`]. Surface points name the input's faces, with weights in the order of
-/// the input's corners, either way.
+/// the input's corners, either way. With [`Holes::Fill`] a manifold input's holes are filled
+/// before all of these; a point in a hole names the input face across the hole's rim
+/// ([`FilledHoles::on_input`](crate::mesh::holes::FilledHoles::on_input)).
 fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
-    let mut work = std::borrow::Cow::Borrowed(mesh);
+    // Holes are filled first (a manifold input's): the repairs below then renumber the filled
+    // surface's faces, and its points go back to the input's at the end.
+    let filled = if options.holes == Holes::Fill { crate::mesh::holes::fill_holes(mesh) } else { None };
+    let base = filled.as_ref().map_or(mesh, |f| &f.mesh);
+    let mut work = std::borrow::Cow::Borrowed(base);
     let (mut split, mut kept, mut deduplicated): (Option<usize>, Option<MainComponent>, Option<usize>) = (None, None, None);
     // The input face of each face of `work`, once a repair has renumbered them.
     let mut to_input: Option<Vec<u32>> = None;
@@ -203,7 +212,7 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
                         work = std::borrow::Cow::Owned(d.mesh);
                     }
                     Some(Repaired::Reoriented(o)) => {
-                        let mut by_input = vec![false; mesh.n_faces()];
+                        let mut by_input = vec![false; base.n_faces()];
                         for (t, _) in o.flipped.iter().enumerate().filter(|(_, &f)| f) {
                             by_input[input_face(&to_input, t)] = true;
                         }
@@ -242,6 +251,12 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
                     // A flipped face lists the input face's corners as (0, 2, 1).
                     for p in points.iter_mut().filter(|p| by_input[p.face]) {
                         p.barycentric.swap(1, 2);
+                    }
+                }
+                if let Some(f) = &filled {
+                    report.filled_holes = f.holes;
+                    for p in &mut points {
+                        (p.face, p.barycentric) = f.on_input(p.face, p.barycentric);
                     }
                 }
                 return Ok((out, report, points));
@@ -318,6 +333,7 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
         duplicate_faces: 0,
         dropped_components: 0,
         dropped_area_share: 0.0,
+        filled_holes: 0,
     };
     Ok((out, report, points))
 }

@@ -102,6 +102,21 @@ pub struct RemeshOptions {
     pub pieces: Pieces,
     /// Where the vertices are put at the end. Default [`Placement::Fitted`].
     pub placement: Placement,
+    /// What is done with an open surface's holes. Default [`Holes::Keep`].
+    pub holes: Holes,
+}
+
+/// What [`remesh`](super::remesh) does with the holes of an open surface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Holes {
+    /// Keep them: an open surface is mapped as a disk and remeshed open. The default.
+    #[default]
+    Keep,
+    /// Fill each with a fan of faces ([`fill_holes`](crate::mesh::holes::fill_holes)) and
+    /// remesh the closed surface: for a closed surface with a few faces missing, whose small
+    /// boundary a disk's map squeezes (docs/method.md, "Holes"). The remesh is closed.
+    Fill,
 }
 
 /// What [`remesh`](super::remesh) does with an input made of several pieces (capmesh maps one surface at a
@@ -164,6 +179,12 @@ impl RemeshOptions {
         self.placement = placement;
         self
     }
+
+    /// Set what is done with an open surface's holes.
+    pub fn with_holes(mut self, holes: Holes) -> Self {
+        self.holes = holes;
+        self
+    }
 }
 
 impl Default for RemeshOptions {
@@ -176,6 +197,7 @@ impl Default for RemeshOptions {
             shape: shape::ShapeOptions::default(),
             pieces: Pieces::default(),
             placement: Placement::default(),
+            holes: Holes::default(),
         }
     }
 }

@@ -37,9 +37,11 @@ pub(crate) fn warn_if_poor(input: &Path, r: &capmesh::ParamReport) {
         );
     }
     if r.domain == Domain::Adaptive && r.area_distortion.mean_abs > POOR_AREA_DISTORTION {
+        // The options that change an open surface's map are not a closed one's.
+        let options = if r.kind == capmesh::mesh::SurfaceKind::OpenDisk { "another --smoothing, --open-lambda or --initial" } else { "--puncture-end bottom or top, another --smoothing or --lambda" };
         eprintln!(
             "warning: {}: mean |d_area| = {:.3} is far from area preserving (fold repair moved a vertex by {:.0}% of the disk radius); \
-             try --puncture-end bottom or top, another --smoothing or --lambda, and check the report's untangle and smoothing_trials",
+             try {options}, and check the report's untangle and smoothing_trials",
             input.display(),
             r.area_distortion.mean_abs,
             100.0 * r.untangle.max_displacement

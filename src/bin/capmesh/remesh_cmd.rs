@@ -77,6 +77,11 @@ pub struct RemeshArgs {
     /// default only specks of at most 1% of the area are dropped, larger pieces refused).
     #[arg(long)]
     pub largest_piece: bool,
+    /// Fill each hole of an open surface with a fan of faces to a vertex at its middle and
+    /// remesh the closed surface (the remesh is closed): for a closed surface with a few faces
+    /// missing, which a disk's map squeezes. Off by default
+    #[arg(long)]
+    pub fill_holes: bool,
     /// Vertex placement: fitted (the default: moved along their normals so that the faces
     /// fit the input in the least-squares sense, a lower mean distance to it; the vertices
     /// leave the surface by a fraction of a face's sagitta) or on-surface (on the input,
@@ -118,6 +123,7 @@ struct Flat<'a> {
     duplicate_faces: usize,
     dropped_components: usize,
     dropped_area_share: f64,
+    filled_holes: usize,
     quality: capmesh::MapQuality,
     optimize: capmesh::remesh::Optimize,
     shape: capmesh::remesh::shape::ShapeReport,
@@ -146,6 +152,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         no_resample,
         keep_creases,
         largest_piece,
+        fill_holes,
         placement,
         sizing,
         figures,
@@ -167,6 +174,9 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape).with_placement(placement);
     if largest_piece {
         options = options.with_pieces(capmesh::Pieces::Largest);
+    }
+    if fill_holes {
+        options = options.with_holes(capmesh::Holes::Fill);
     }
     map.apply(&mut options.param);
     let (out, rep, points) = capmesh::remesh_located(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
@@ -204,9 +214,17 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     if rep.reoriented_faces > 0 {
         outln!("{}", crate::param_cmd::reorient_note(&input, rep.reoriented_faces));
     }
+    if rep.filled_holes > 0 {
+        outln!(
+            "{}: filled {} hole{} (a fan of faces to a vertex in each) and remeshed the closed surface",
+            input.display(),
+            rep.filled_holes,
+            if rep.filled_holes == 1 { "" } else { "s" }
+        );
+    }
     if rep.param.kind == capmesh::mesh::SurfaceKind::OpenDisk {
         if let Some(note) = crate::param_cmd::small_boundary_note(&input, &m) {
-            outln!("{note}");
+            outln!("{note}; or remesh with --fill-holes");
         }
     }
     warn_if_poor(&input, &rep.param);
@@ -247,6 +265,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
                 duplicate_faces: rep.duplicate_faces,
                 dropped_components: rep.dropped_components,
                 dropped_area_share: rep.dropped_area_share,
+                filled_holes: rep.filled_holes,
                 quality: rep.param.quality,
                 optimize: rep.optimize,
                 shape: rep.shape,
