@@ -3,32 +3,16 @@
 //! closed surface: closed, well shaped, its points on the input's faces.
 
 use capmesh::io::{read_mesh, write_mesh};
-use capmesh::mesh::{TriMesh, Topology};
+use capmesh::mesh::Topology;
 use capmesh::progress::NoProgress;
 use capmesh::remesh::{remesh, remesh_located, Holes, RemeshOptions};
 use capmesh::MapQuality;
 
 mod common;
 
-/// The bundled closed `name` without the faces within `rings` edges of its lowest vertex: one
-/// hole, of 5-6 boundary edges for `rings = 1`.
-fn holed(name: &str, rings: usize) -> TriMesh {
-    let m = read_mesh(&common::data(name)).unwrap();
-    let lowest = (0..m.vertices.len()).min_by(|&a, &b| m.vertices[a][2].total_cmp(&m.vertices[b][2])).unwrap() as u32;
-    let mut removed = vec![lowest];
-    for _ in 1..rings {
-        let ring: Vec<u32> = m.faces.iter().filter(|f| f.iter().any(|v| removed.contains(v))).flatten().copied().collect();
-        removed.extend(ring);
-        removed.sort_unstable();
-        removed.dedup();
-    }
-    let faces = m.faces.iter().copied().filter(|f| !f.iter().any(|v| removed.contains(v))).collect();
-    TriMesh { vertices: m.vertices, faces }
-}
-
 #[test]
 fn a_bunny_with_a_hole_filled_remeshes_closed_and_well_shaped() {
-    let m = holed("closed_bunny_npm.obj", 1);
+    let m = common::holed("closed_bunny_npm.obj", 1);
     let loops = Topology::build(&m).unwrap().boundary_loops;
     assert_eq!(loops.len(), 1);
     let options = RemeshOptions::default().with_holes(Holes::Fill);
@@ -72,7 +56,7 @@ fn filling_a_closed_surface_changes_nothing() {
 fn the_cli_fills_holes_and_says_so() {
     let dir = common::TempDir::new("holes");
     let input = dir.path("holed.obj");
-    write_mesh(&input, &holed("closed_bunny_npm.obj", 2)).unwrap();
+    write_mesh(&input, &common::holed("closed_bunny_npm.obj", 2)).unwrap();
     let (output, report) = (dir.path("out.obj"), dir.path("r.json"));
     let run = common::cli::capmesh().arg("remesh").arg(&input).arg("-o").arg(&output).args(["--faces", "2000", "--fill-holes", "--quiet", "--report"]).arg(&report).output().unwrap();
     let stdout = String::from_utf8_lossy(&run.stdout);

@@ -23,6 +23,22 @@ pub fn data(name: &str) -> PathBuf {
     candidates.iter().find(|p| p.exists()).unwrap_or(&candidates[0]).clone()
 }
 
+/// The bundled closed `name` without the faces within `rings` edges of its lowest vertex: one
+/// hole (5-6 boundary edges for `rings = 1`), as a segmentation cut by the volume's edge.
+pub fn holed(name: &str, rings: usize) -> capmesh::TriMesh {
+    let m = capmesh::io::read_mesh(&data(name)).unwrap();
+    let lowest = (0..m.vertices.len()).min_by(|&a, &b| m.vertices[a][2].total_cmp(&m.vertices[b][2])).unwrap() as u32;
+    let mut removed = vec![lowest];
+    for _ in 1..rings {
+        let ring: Vec<u32> = m.faces.iter().filter(|f| f.iter().any(|v| removed.contains(v))).flatten().copied().collect();
+        removed.extend(ring);
+        removed.sort_unstable();
+        removed.dedup();
+    }
+    let faces = m.faces.iter().copied().filter(|f| !f.iter().any(|v| removed.contains(v))).collect();
+    capmesh::TriMesh { vertices: m.vertices, faces }
+}
+
 /// A fresh, unique directory under the system temp dir, removed on drop. Derefs to its path.
 pub struct TempDir(PathBuf);
 

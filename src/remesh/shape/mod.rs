@@ -367,6 +367,10 @@ pub(crate) fn optimize_shape(
             let incidence = mesh.incidence();
             let rho = vertex_densities(&mesh, input.lift, input.density);
             report.collapses += resample::collapse_short_edges(&mut mesh, &incidence, input.lift, resample::COLLAPSE * len, resample::SPLIT * len, &length_factor(&rho));
+            if let Some(track) = input.track {
+                let incidence = mesh.incidence();
+                report.collapses += resample::collapse_short_boundary_edges(&mut mesh, &incidence, track, &mut arc, resample::BOUNDARY_COLLAPSE * len, resample::SPLIT * len, &length_factor(&rho));
+            }
         }
         // The second half of the relaxation moves faces from where they are too small to
         // where they are too large (`rebalance`): uniform remeshes only, whose targets are

@@ -13,7 +13,9 @@
 //! also only when it creates no edge longer than the split length. Neither is made where the
 //! inverse map is not resolved at the edge's scale (the edge stretched more than
 //! [`MAX_STRETCH`] times against the map's mean scale, or a split's lifted midpoint far from
-//! the chord): there (the hand's finger webs, the bunny's ears) they left slivers.
+//! the chord): there (the hand's finger webs, the bunny's ears) they left slivers. An open
+//! surface's boundary edges shorter than half the target are collapsed along the input's
+//! boundary ([`collapse_short_boundary_edges`]).
 
 use super::boundary::Track;
 use super::state::{drop_faces, edge_faces, neighbours, smallest_angle, third, Incidence, Role, Shaping, SurfaceLift};
@@ -23,6 +25,12 @@ use crate::mesh::geometry::{cross, dot, norm, signed_area_2d, sub};
 pub(crate) const SPLIT: f64 = 4.0 / 3.0;
 /// Edges shorter than this many target lengths are collapsed.
 pub(crate) const COLLAPSE: f64 = 4.0 / 5.0;
+
+/// Boundary edges shorter than this many target lengths are collapsed
+/// ([`collapse_short_boundary_edges`]): fewer than the interior's [`COLLAPSE`], since a rim
+/// that is a little dense is better left as the cap grid made it (at 4/5 the bundled hand
+/// lost 0.35 degrees of mean smallest angle); a nearly closed surface's rim is 0.1-0.2.
+pub(crate) const BOUNDARY_COLLAPSE: f64 = 0.5;
 
 /// Cosine of the largest turn of a face's normal in a collapse (45 degrees): a collapse
 /// that tilts a face more folds the surface where it is curved at the edge's scale.
@@ -245,21 +253,7 @@ pub(crate) fn collapse_edges(mesh: &mut Shaping, incidence: &Incidence, lift: &S
         };
         // Every face around u or v that survives, with both at the merged point.
         let ring: Vec<u32> = incidence.of(u as usize).iter().chain(incidence.of(v as usize)).copied().filter(|&t| t != t1 && t != t2).collect();
-        let ok = ring.iter().all(|&t| {
-            let f = mesh.faces[t as usize];
-            if !f.iter().all(|&w| mesh.planar(w)) {
-                return false;
-            }
-            let p = f.map(|w| if w == u || w == v { q } else { mesh.plane[w as usize] });
-            let y = f.map(|w| if w == u || w == v { x } else { mesh.position[w as usize] });
-            let old = f.map(|w| mesh.position[w as usize]);
-            let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
-            let n1 = cross(sub(y[1], y[0]), sub(y[2], y[0]));
-            let long = f.iter().any(|&w| w != u && w != v && norm(sub(mesh.position[w as usize], x)) > max_len * local(u, v));
-            let sliver = smallest_angle(y[0], y[1], y[2]) < smallest_angle(old[0], old[1], old[2]).min(COLLAPSE_MIN_ANGLE_DEG.to_radians());
-            mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1) && !long && !sliver
-        });
-        if !ok {
+        if !merge_keeps_faces(mesh, &ring, &[t1, t2], (u, v), (q, x), max_len * local(u, v), Judge::EachFace) {
             continue;
         }
         for &t in &ring {
@@ -277,6 +271,146 @@ pub(crate) fn collapse_edges(mesh: &mut Shaping, incidence: &Incidence, lift: &S
         for w in nu.iter().chain(&nv).chain([&u, &v]) {
             touched[*w as usize] = true;
         }
+        collapses += 1;
+    }
+    if collapses > 0 {
+        drop_faces(&mut mesh.faces, &removed_face);
+    }
+    collapses
+}
+
+/// How [`merge_keeps_faces`] judges a merge's long edges and small angles.
+#[derive(Clone, Copy, PartialEq)]
+enum Judge {
+    /// Face by face: no edge from the merged point longer than `max_len`, no smallest angle
+    /// below the face's own before or [`COLLAPSE_MIN_ANGLE_DEG`].
+    EachFace,
+    /// The ring as a whole (a boundary collapse among needles, whose faces each change a
+    /// little either way): no edge longer than `max_len` that was not already, no smallest
+    /// angle below the ring's before (the removed faces included) or
+    /// [`COLLAPSE_MIN_ANGLE_DEG`].
+    Ring,
+}
+
+/// Whether the faces `ring` around `u` and `v`, with both at the planar point `q` and its
+/// lift `x`, all keep their planar orientation and their side on the surface (a normal turned
+/// by less than 45 degrees), with long edges and small angles as `judge` says; `removed`:
+/// the faces the merge removes.
+fn merge_keeps_faces(mesh: &Shaping, ring: &[u32], removed: &[u32], (u, v): (u32, u32), (q, x): ([f64; 2], [f64; 3]), max_len: f64, judge: Judge) -> bool {
+    let angle_before = |t: u32| {
+        let old = mesh.faces[t as usize].map(|w| mesh.position[w as usize]);
+        smallest_angle(old[0], old[1], old[2])
+    };
+    let ring_before = ring.iter().chain(removed).map(|&t| angle_before(t)).fold(f64::INFINITY, f64::min);
+    ring.iter().all(|&t| {
+        let f = mesh.faces[t as usize];
+        if !f.iter().all(|&w| mesh.planar(w)) {
+            return false;
+        }
+        let p = f.map(|w| if w == u || w == v { q } else { mesh.plane[w as usize] });
+        let y = f.map(|w| if w == u || w == v { x } else { mesh.position[w as usize] });
+        let old = f.map(|w| mesh.position[w as usize]);
+        let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
+        let n1 = cross(sub(y[1], y[0]), sub(y[2], y[0]));
+        // The face's corner among u and v, whose edges the merge moves.
+        let end = if f.contains(&u) { u } else { v };
+        let long = f.iter().any(|&w| {
+            let was_long = norm(sub(mesh.position[w as usize], mesh.position[end as usize])) > max_len;
+            w != u && w != v && norm(sub(mesh.position[w as usize], x)) > max_len && !(judge == Judge::Ring && was_long)
+        });
+        let before = if judge == Judge::Ring { ring_before } else { angle_before(t) };
+        let sliver = smallest_angle(y[0], y[1], y[2]) < before.min(COLLAPSE_MIN_ANGLE_DEG.to_radians());
+        mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1) && !long && !sliver
+    })
+}
+
+/// Collapse the boundary edges of an open remesh shorter than `min_len` times `local(a, b)`,
+/// shortest first: a sliding vertex into its neighbour on the boundary, both then at their
+/// arc midpoint on the input's boundary `track` (else where either end is; a corner stays
+/// where it is), with the checks of [`collapse_short_edges`] judged over the ring
+/// ([`Judge::Ring`]). Unlike an interior edge's, a boundary edge is collapsed however the map
+/// stretches it: its new vertex is on the input's boundary exactly, no lift is involved. The
+/// cap grid's rim holds as many vertices as its length on the cap asks for, and where the map
+/// stretches a short boundary (a closed surface with a hole) that is several times what its
+/// length on the surface asks for (docs/method.md section 18, "Short boundaries"). The loop
+/// keeps at least four vertices. Returns the number of collapses.
+pub(crate) fn collapse_short_boundary_edges(mesh: &mut Shaping, incidence: &Incidence, track: &Track, arc: &mut [f64], min_len: f64, max_len: f64, local: &dyn Fn(u32, u32) -> f64) -> usize {
+    let edges = edge_faces(&mesh.faces);
+    let mut short: Vec<(f64, (u32, u32), u32)> = edges
+        .iter()
+        .filter_map(|(&(a, b), t)| {
+            let face = match *t {
+                [t1, u32::MAX] => t1,
+                [u32::MAX, t2] => t2,
+                _ => return None,
+            };
+            let l = length(mesh, a, b);
+            (mesh.planar(a) && mesh.planar(b) && l < min_len * local(a, b)).then_some((l, (a, b), face))
+        })
+        .collect();
+    let mut loop_vertices = edges.values().filter(|t| t.contains(&u32::MAX)).count();
+    short.sort_unstable_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    let mut touched = vec![false; mesh.plane.len()];
+    let mut removed_face = vec![false; mesh.faces.len()];
+    let mut collapses = 0;
+    for (_, (a, b), t1) in short {
+        if loop_vertices <= 4 {
+            break;
+        }
+        if touched[a as usize] || touched[b as usize] {
+            continue;
+        }
+        // Remove u, keep v: a corner (fixed) is kept.
+        let (u, v) = match (mesh.role[a as usize], mesh.role[b as usize]) {
+            (Role::Boundary, Role::Boundary | Role::Fixed) => (a, b),
+            (Role::Fixed, Role::Boundary) => (b, a),
+            _ => continue,
+        };
+        let (nu, nv) = (neighbours(mesh, incidence, u), neighbours(mesh, incidence, v));
+        if nu.iter().filter(|x| nv.binary_search(x).is_ok()).count() != 1 {
+            continue;
+        }
+        let f = mesh.faces[t1 as usize];
+        let Some(c) = third(f, a, b).or_else(|| third(f, b, a)) else { continue };
+        if incidence.of(c as usize).len() <= 3 || nu.len() + nv.len() - 3 > MAX_VALENCE {
+            continue;
+        }
+        // The merged point: the arc midpoint, else where either end is (the rim's faces are
+        // thin in the plane, and a tangential move turns some over); a corner's own point.
+        let at = |w: u32| (mesh.plane[w as usize], mesh.position[w as usize], arc[w as usize]);
+        let candidates = if mesh.role[v as usize] == Role::Boundary {
+            let len = track.length();
+            let (su, sv) = (arc[u as usize], arc[v as usize]);
+            let mut gap = (sv - su).rem_euclid(len);
+            if gap > 0.5 * len {
+                gap -= len;
+            }
+            let s = (su + 0.5 * gap).rem_euclid(len);
+            let (q, x) = track.at(s);
+            vec![(q, x, s), at(v), at(u)]
+        } else {
+            vec![at(v)]
+        };
+        let ring: Vec<u32> = incidence.of(u as usize).iter().chain(incidence.of(v as usize)).copied().filter(|&t| t != t1).collect();
+        let Some((q, x, s)) = candidates.into_iter().find(|&(q, x, _)| merge_keeps_faces(mesh, &ring, &[t1], (u, v), (q, x), max_len * local(u, v), Judge::Ring)) else {
+            continue;
+        };
+        for &t in &ring {
+            for w in mesh.faces[t as usize].iter_mut() {
+                if *w == u {
+                    *w = v;
+                }
+            }
+        }
+        removed_face[t1 as usize] = true;
+        mesh.plane[v as usize] = q;
+        mesh.position[v as usize] = x;
+        mesh.hint[v as usize] = u32::MAX;
+        arc[v as usize] = s;
+        for w in nu.iter().chain(&nv).chain([&u, &v]) {
+            touched[*w as usize] = true;
+        }
+        loop_vertices -= 1;
         collapses += 1;
     }
     if collapses > 0 {
