@@ -67,3 +67,45 @@ fn the_cli_fills_holes_and_says_so() {
     assert_eq!(json["parameterization"]["kind"], "closed genus-0");
     assert!(Topology::build(&read_mesh(&output).unwrap()).unwrap().boundary_loops.is_empty());
 }
+
+/// An open tube (a vessel, an airway) of `rings` rows of `sectors` vertices, bulging in the
+/// middle: two boundary loops.
+fn tube(rings: usize, sectors: usize) -> capmesh::TriMesh {
+    let mut vertices = Vec::new();
+    for j in 0..=rings {
+        let t = j as f64 / rings as f64;
+        for i in 0..sectors {
+            let a = std::f64::consts::TAU * (i as f64 + 0.5 * (j % 2) as f64) / sectors as f64;
+            let r = 1.0 + 0.3 * (std::f64::consts::PI * t).sin();
+            vertices.push([r * a.cos(), a.sin(), 4.0 * t]);
+        }
+    }
+    let at = |j: usize, i: usize| (j * sectors + i % sectors) as u32;
+    let mut faces = Vec::new();
+    for j in 0..rings {
+        for i in 0..sectors {
+            faces.push([at(j, i), at(j, i + 1), at(j + 1, i + 1)]);
+            faces.push([at(j, i), at(j + 1, i + 1), at(j + 1, i)]);
+        }
+    }
+    capmesh::TriMesh { vertices, faces }
+}
+
+/// A tube is refused as a disk, and the error names `--fill-holes`; with it both ends are
+/// filled and the closed surface remeshed.
+#[test]
+fn a_tube_is_refused_with_the_fill_holes_hint_and_remeshed_with_it() {
+    let dir = common::TempDir::new("tube");
+    let input = dir.path("tube.obj");
+    write_mesh(&input, &tube(60, 48)).unwrap();
+    let (output, report) = (dir.path("out.obj"), dir.path("r.json"));
+    let refused = common::cli::capmesh().arg("remesh").arg(&input).arg("-o").arg(&output).args(["--faces", "2000", "--quiet"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("2 boundary loops") && stderr.contains("or remesh with --fill-holes"), "{stderr}");
+    let filled = common::cli::capmesh().arg("remesh").arg(&input).arg("-o").arg(&output).args(["--faces", "2000", "--fill-holes", "--quiet", "--report"]).arg(&report).output().unwrap();
+    assert!(filled.status.success(), "{}", String::from_utf8_lossy(&filled.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["filled_holes"], 2);
+    assert!(json["min_angle_deg"].as_f64().unwrap() >= 15.0 && json["mean_min_angle_deg"].as_f64().unwrap() >= 47.0, "{json}");
+}

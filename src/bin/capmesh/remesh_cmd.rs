@@ -179,7 +179,14 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         options = options.with_holes(capmesh::Holes::Fill);
     }
     map.apply(&mut options.param);
-    let (out, rep, points) = capmesh::remesh_located(&m, &options, &bar).map_err(|e| failure::of_pipeline("remesh", &input, bar.stage(), e))?;
+    let (out, rep, points) = capmesh::remesh_located(&m, &options, &bar).map_err(|e| {
+        // A tube (a vessel, an airway) has two boundary loops: filled, it is a closed surface.
+        let holes = matches!(e, capmesh::Error::Mesh(capmesh::mesh::MeshError::SeveralBoundaryLoops { .. }));
+        match failure::of_pipeline("remesh", &input, bar.stage(), e) {
+            Failure::Error(text) if holes => Failure::Error(format!("{text}; or remesh with --fill-holes, which fills every hole and remeshes the closed surface")),
+            other => other,
+        }
+    })?;
     bar.finish();
     let t_write = std::time::Instant::now();
     let carried: Vec<_> = attributes.iter().map(|a| capmesh::carry_attribute(&m, &points, a)).collect();
