@@ -66,9 +66,9 @@ pub(crate) struct FromCap {
     /// remesh faces): every
     /// start has them, so they do not send [`from_best_start`] to the next one.
     pub slivers_at_rim: usize,
-    /// Faces below 15 degrees at a closed surface's merged bottom vertex
-    /// ([`shape::uncross::slivers_at_bottom`]): counted with the slivers, which they are not
-    /// in the untangling's report.
+    /// Faces below 15 degrees at a closed surface's bottom (the merged bottom vertex, or the
+    /// bottom disk when it is not merged; [`shape::uncross::slivers_at_bottom`]): counted with
+    /// the slivers, which they are not in the untangling's report.
     pub slivers_at_bottom: usize,
     /// Which vertices the stages kept in place (the rim, the bottom).
     pub fixed: Vec<bool>,

@@ -220,10 +220,13 @@ fn uncross_by_flip(mesh: &mut Shaping, incidence: &Incidence, t: u32, slivers: b
 /// Whether the planar face `f` is a sliver as [`uncross`] counts them (an angle below
 /// [`MIN_ANGLE`]).
 fn is_sliver(position: &[[f64; 3]], has_plane: &[bool], f: [u32; 3]) -> bool {
-    f.iter().all(|&u| has_plane[u as usize]) && {
-        let p = f.map(|u| position[u as usize]);
-        smallest_angle(p[0], p[1], p[2]) < MIN_ANGLE.to_radians()
-    }
+    f.iter().all(|&u| has_plane[u as usize]) && is_thin(position, f)
+}
+
+/// Whether face `f` has an angle below [`MIN_ANGLE`].
+fn is_thin(position: &[[f64; 3]], f: [u32; 3]) -> bool {
+    let p = f.map(|u| position[u as usize]);
+    smallest_angle(p[0], p[1], p[2]) < MIN_ANGLE.to_radians()
 }
 
 /// The faces at a closed surface's bottom (a corner without a planar point: the merged bottom
@@ -233,11 +236,7 @@ fn is_sliver(position: &[[f64; 3]], has_plane: &[bool], f: [u32; 3]) -> bool {
 pub(crate) fn slivers_at_bottom(position: &[[f64; 3]], faces: &[[u32; 3]], has_plane: &[bool]) -> usize {
     faces
         .iter()
-        .filter(|f| f.iter().any(|&u| !has_plane[u as usize]))
-        .filter(|f| {
-            let p = f.map(|u| position[u as usize]);
-            smallest_angle(p[0], p[1], p[2]) < MIN_ANGLE.to_radians()
-        })
+        .filter(|f| f.iter().any(|&u| !has_plane[u as usize]) && is_thin(position, **f))
         .count()
 }
 
