@@ -18,7 +18,10 @@ on anatomical meshes that are not in the repository").
   probability above 0.5) and the head (T1 above its 60th percentile), each its largest piece with
   its cavities filled, padded, smoothed (Gaussian, 2 voxels) and cut by marching cubes at 0.5:
   closed genus-0 surfaces of about 130k vertices, as a segmented MRI or CT gives them, mapped
-  through a decimated copy (docs/method.md section 20).
+  through a decimated copy (docs/method.md section 20). The head once more, not padded below:
+  cut by the volume's lower edge, an open surface whose boundary is far shorter than the surface
+  is wide (a closed surface with a hole; docs/method.md section 18, "Short boundaries"), remeshed
+  as it is and with `--fill-holes` (section 24).
 - Two synthetic long bones (marching cubes of a capsule with rounded ends, scikit-image): a shaft
   5-6 times as long as it is wide, where an area-preserving map onto the sphere is anisotropic
   and its transport hardest to start (docs/method.md, "2. Logarithmic and stale Newton steps,
@@ -74,9 +77,10 @@ def long_bone(path, half_length, shaft, end, voxel):
     write_obj(path, vertices, faces)
 
 
-def segmentation_surface(path, mask):
-    """The smoothed boundary of `mask`'s largest piece, cavities filled (see the module doc)."""
-    mask = np.pad(mask, 4)
+def segmentation_surface(path, mask, pad_below=4):
+    """The smoothed boundary of `mask`'s largest piece, cavities filled (see the module doc);
+    `pad_below` 0 leaves it cut where it meets the volume's lower edge."""
+    mask = np.pad(mask, ((4, 4), (4, 4), (pad_below, 4)))
     labels, count = ndimage.label(mask)
     sizes = ndimage.sum(mask, labels, range(1, count + 1))
     piece = ndimage.binary_fill_holes(labels == 1 + int(np.argmax(sizes)))
@@ -92,9 +96,10 @@ def mni_surfaces(work, z):
             out.write(z.read(f"nilearn/datasets/data/mni_icbm152_{name}_tal_nlin_sym_09a_converted.nii.gz"))
         return np.asarray(nibabel.load(path).get_fdata())
     t1 = volume("t1")
-    paths = {"mni152_brain": os.path.join(work, "mni152_brain.obj"), "mni152_head": os.path.join(work, "mni152_head.obj")}
+    paths = {name: os.path.join(work, f"{name}.obj") for name in ["mni152_brain", "mni152_head", "mni152_head_cut"]}
     segmentation_surface(paths["mni152_brain"], volume("gm") + volume("wm") > 0.5)
     segmentation_surface(paths["mni152_head"], t1 > np.percentile(t1, 60))
+    segmentation_surface(paths["mni152_head_cut"], t1 > np.percentile(t1, 60), pad_below=0)
     return paths
 
 
@@ -150,9 +155,12 @@ def main():
     args = ap.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as work:
-        for name, path in surfaces(work).items():
+        runs = [(name, path, ()) for name, path in surfaces(work).items()]
+        runs += [(f"{name} --fill-holes", path, ("--fill-holes",)) for name, path, _ in runs if name == "mni152_head_cut"]
+        for name, path, options in runs:
             for faces in args.faces.split(","):
-                row, r = remesh_row(name, path, os.path.join(work, f"{name}_{faces}.obj"), faces, work, {})
+                out = os.path.join(work, f"{name.split()[0]}_{len(options)}_{faces}.obj")
+                row, r = remesh_row(name, path, out, faces, work, {}, options)
                 if r is not None:
                     row["input_faces"] = r["parameterization"]["n_faces"]
                     row["d_surface_sampled_relative"] = r["d_surface_sampled_relative"]
@@ -171,9 +179,10 @@ def write(rows, args):
         f"and the Conte69 32k midthickness surfaces from BrainSpace {BRAINSPACE}'s wheel",
         "(downloaded at run time, not committed), both hemispheres, the Conte69 left hemisphere without its medial wall",
         "(an open sheet, BrainSpace's mask), the MNI152 template's brain and head segmented and cut by marching cubes",
-        "(`segmentation_surface` in the script, nilearn's wheel), two synthetic long bones (marching cubes, `LONG_BONES` in the script)",
+        "(`segmentation_surface` in the script, nilearn's wheel; `mni152_head_cut`: the head not padded below, open where",
+        "the volume cuts it, as it is and with `--fill-holes`), two synthetic long bones (marching cubes, `LONG_BONES` in the script)",
         "and pymeshlab's sample bone (`tests/sample_meshes/bone.ply` of pymeshlab 2025.7.post1), then",
-        f"`capmesh remesh SURFACE --faces N` (N = {args.faces.replace(',', ', ')}) with the default options, timed around the",
+        f"`capmesh remesh SURFACE --faces N` (N = {args.faces.replace(',', ', ')}) with the default options (but where named), timed around the",
         "whole command. Bars of issue 26 (set for 5000 faces): d_face_rel <= 0.035, mean smallest angle >= 48,",
         "<= 2% of faces below 30 degrees, smallest angle >= 15, no more self-intersecting faces than the input;",
         "`misses` names the bars a row misses. d_surf: symmetric face-sampled mean distance over the bounding-box diagonal.",

@@ -135,12 +135,13 @@ def misses(name, r):
     return bad
 
 
-def remesh_row(name, path, out, faces, work, keys):
-    """Run `capmesh remesh path --faces faces` into `out`: the row of the issue's figures (with
-    `keys` first, and the bars `misses`) and the JSON report, or an error row and `None`."""
+def remesh_row(name, path, out, faces, work, keys, options=()):
+    """Run `capmesh remesh path --faces faces` (and `options`) into `out`: the row of the issue's
+    figures (with `keys` first, and the bars `misses`) and the JSON report, or an error row and
+    `None`."""
     report = out + ".json"
     t = time.perf_counter()
-    run = subprocess.run([CAPMESH, "remesh", path, "-o", out, "--faces", faces, "--report", report, "--quiet"], capture_output=True, text=True)
+    run = subprocess.run([CAPMESH, "remesh", path, "-o", out, "--faces", faces, "--report", report, "--quiet", *options], capture_output=True, text=True)
     seconds = time.perf_counter() - t
     label = " ".join([name, *map(str, keys.values()), faces])
     if run.returncode != 0:

@@ -154,7 +154,7 @@ fn boundary_and_interior_edges(mesh: &TriMesh) -> (f64, f64) {
 /// vertices its length on the surface asks for on it (boundary edges 0.23 of the interior
 /// ones, smallest angle 11.7 degrees, d_face_rel 0.037). Boundary edges below half the target
 /// length are collapsed along the input's boundary (`resample::collapse_short_boundary_edges`):
-/// 0.73, 30.0 degrees, 0.017.
+/// 0.70, 30.5 degrees, 0.017.
 #[test]
 fn a_short_boundary_gets_the_vertices_its_length_asks_for() {
     let mesh = common::holed("closed_lung_rml_chaste.obj.gz", 4);

@@ -77,6 +77,17 @@ fn resolved(mesh: &Shaping, scale: f64, a: u32, b: u32) -> bool {
     l <= MAX_STRETCH * planar && planar <= MAX_STRETCH * l
 }
 
+/// The arc length midway between arc lengths `sa` and `sb` on the closed `track`, the shorter
+/// way round.
+fn arc_midpoint(track: &Track, sa: f64, sb: f64) -> f64 {
+    let len = track.length();
+    let mut gap = (sb - sa).rem_euclid(len);
+    if gap > 0.5 * len {
+        gap -= len;
+    }
+    (sa + 0.5 * gap).rem_euclid(len)
+}
+
 /// Add a vertex; returns its number.
 fn push_vertex(mesh: &mut Shaping, arc: &mut Vec<f64>, q: [f64; 2], x: [f64; 3], hint: u32, role: Role, s: f64) -> u32 {
     mesh.plane.push(q);
@@ -133,13 +144,7 @@ pub(crate) fn split_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &mut V
             if mesh.role[a as usize] == Role::Free || mesh.role[b as usize] == Role::Free {
                 continue;
             }
-            let len = track.length();
-            let (sa, sb) = (arc[a as usize], arc[b as usize]);
-            let mut gap = (sb - sa).rem_euclid(len);
-            if gap > 0.5 * len {
-                gap -= len;
-            }
-            let s = (sa + 0.5 * gap).rem_euclid(len);
+            let s = arc_midpoint(track, arc[a as usize], arc[b as usize]);
             let (q, x) = track.at(s);
             (q, x, u32::MAX, Role::Boundary, s)
         };
@@ -372,20 +377,14 @@ pub(crate) fn collapse_short_boundary_edges(mesh: &mut Shaping, incidence: &Inci
         }
         let f = mesh.faces[t1 as usize];
         let Some(c) = third(f, a, b).or_else(|| third(f, b, a)) else { continue };
-        if incidence.of(c as usize).len() <= 3 || nu.len() + nv.len() - 3 > MAX_VALENCE {
+        if incidence.of(c as usize).len() <= 3 || nu.len() + nv.len() - 3 > MAX_VALENCE - 2 {
             continue;
         }
         // The merged point: the arc midpoint, else where either end is (the rim's faces are
         // thin in the plane, and a tangential move turns some over); a corner's own point.
         let at = |w: u32| (mesh.plane[w as usize], mesh.position[w as usize], arc[w as usize]);
         let candidates = if mesh.role[v as usize] == Role::Boundary {
-            let len = track.length();
-            let (su, sv) = (arc[u as usize], arc[v as usize]);
-            let mut gap = (sv - su).rem_euclid(len);
-            if gap > 0.5 * len {
-                gap -= len;
-            }
-            let s = (su + 0.5 * gap).rem_euclid(len);
+            let s = arc_midpoint(track, arc[u as usize], arc[v as usize]);
             let (q, x) = track.at(s);
             vec![(q, x, s), at(v), at(u)]
         } else {
