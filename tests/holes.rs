@@ -109,3 +109,18 @@ fn a_tube_is_refused_with_the_fill_holes_hint_and_remeshed_with_it() {
     assert_eq!(json["filled_holes"], 2);
     assert!(json["min_angle_deg"].as_f64().unwrap() >= 15.0 && json["mean_min_angle_deg"].as_f64().unwrap() >= 47.0, "{json}");
 }
+
+/// Kept open, a closed surface with a small hole maps as a disk onto nearly the whole sphere:
+/// its radius search runs from the bound of `Z*`, as a closed surface's (over `Z*` itself the
+/// search ended on a tiny cap, `Z*` 0.9945, mean |d_area| 7.9, poor).
+#[test]
+fn a_bunny_with_a_hole_maps_as_a_disk_onto_nearly_the_sphere() {
+    let m = common::holed("closed_bunny_npm.obj", 1);
+    let map = capmesh::param::parameterize(&m, &capmesh::param::ParamOptions::default(), &NoProgress).unwrap();
+    let r = &map.report;
+    eprintln!("holed bunny as a disk: Z* {:?}, mean |d_area| {:.4}, flipped {}", r.z_star, r.area_distortion.mean_abs, r.flipped_faces);
+    assert_eq!(r.kind, capmesh::mesh::SurfaceKind::OpenDisk);
+    assert_eq!((r.quality, r.flipped_faces), (MapQuality::Good, 0));
+    assert!(r.area_distortion.mean_abs < 0.1, "mean |d_area| {}", r.area_distortion.mean_abs);
+    assert!(r.z_star.is_some_and(|z| z < -0.9), "Z* {:?}", r.z_star);
+}
