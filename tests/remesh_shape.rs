@@ -21,23 +21,8 @@ fn run(mesh: &TriMesh, optimize: Optimize) -> (TriMesh, capmesh::remesh::RemeshR
     remesh(mesh, &options, &NoProgress).unwrap()
 }
 
-/// Boundary vertices of a mesh (on an edge with one face).
-fn boundary_vertices(mesh: &TriMesh) -> Vec<usize> {
-    let mut count = std::collections::HashMap::new();
-    for f in &mesh.faces {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            *count.entry((a.min(b), a.max(b))).or_insert(0) += 1;
-        }
-    }
-    let mut out: Vec<usize> = count.iter().filter(|(_, &c)| c == 1).flat_map(|(&(a, b), _)| [a as usize, b as usize]).collect();
-    out.sort_unstable();
-    out.dedup();
-    out
-}
-
-/// Distance from `p` to the boundary edges of `mesh`.
-fn distance_to_boundary(mesh: &TriMesh, p: [f64; 3]) -> f64 {
+/// The faces using each edge `(a, b)`, `a < b`, of `mesh`.
+fn edge_uses(mesh: &TriMesh) -> std::collections::HashMap<(u32, u32), usize> {
     let mut count = std::collections::HashMap::new();
     for f in &mesh.faces {
         for k in 0..3 {
@@ -46,6 +31,20 @@ fn distance_to_boundary(mesh: &TriMesh, p: [f64; 3]) -> f64 {
         }
     }
     count
+}
+
+/// Boundary vertices of a mesh (on an edge with one face).
+fn boundary_vertices(mesh: &TriMesh) -> Vec<usize> {
+    let count = edge_uses(mesh);
+    let mut out: Vec<usize> = count.iter().filter(|(_, &c)| c == 1).flat_map(|(&(a, b), _)| [a as usize, b as usize]).collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// Distance from `p` to the boundary edges of `mesh`.
+fn distance_to_boundary(mesh: &TriMesh, p: [f64; 3]) -> f64 {
+    edge_uses(mesh)
         .iter()
         .filter(|(_, &c)| c == 1)
         .map(|(&(a, b), _)| {
@@ -132,15 +131,8 @@ fn check_mesh(name: &str, mesh: &TriMesh, max_d_face: f64) -> (TriMesh, capmesh:
 
 /// Mean length of the boundary edges and of the interior edges of `mesh`.
 fn boundary_and_interior_edges(mesh: &TriMesh) -> (f64, f64) {
-    let mut count = std::collections::HashMap::new();
-    for f in &mesh.faces {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            *count.entry((a.min(b), a.max(b))).or_insert(0) += 1;
-        }
-    }
     let mut sums = [(0.0, 0usize); 2];
-    for (&(a, b), &c) in &count {
+    for (&(a, b), &c) in &edge_uses(mesh) {
         let (p, q) = (mesh.vertices[a as usize], mesh.vertices[b as usize]);
         let s = &mut sums[usize::from(c == 2)];
         s.0 += (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt();

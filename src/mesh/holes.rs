@@ -7,7 +7,7 @@
 //! Each boundary loop gets one vertex at the mean of its vertices and a fan of faces to it,
 //! wound against the loop's faces so that the orientation stays coherent.
 
-use super::topology::Topology;
+use super::topology::{edge_faces, Topology};
 use super::TriMesh;
 use std::collections::HashMap;
 
@@ -19,8 +19,6 @@ pub struct FilledHoles {
     pub mesh: TriMesh,
     /// Holes filled (the input's boundary loops).
     pub holes: usize,
-    /// Boundary edges of the input (faces added).
-    pub boundary_edges: usize,
     /// For each added face, in order: the input face across its edge on the hole's rim, and
     /// the corners (indices 0..3 in that input face) of that edge as they come in the added
     /// face's first two corners.
@@ -49,13 +47,16 @@ pub fn fill_holes(mesh: &TriMesh) -> Option<FilledHoles> {
     if topology.boundary_loops.is_empty() {
         return None;
     }
-    // The face and corner of each directed edge.
-    let mut directed: HashMap<(u32, u32), (usize, usize)> = HashMap::with_capacity(3 * mesh.n_faces());
-    for (t, f) in mesh.faces.iter().enumerate() {
-        for k in 0..3 {
-            directed.insert((f[k], f[(k + 1) % 3]), (t, k));
-        }
-    }
+    // The face of each boundary edge, keyed by the edge's direction in it.
+    let rim: HashMap<(u32, u32), usize> = edge_faces(mesh)
+        .ok()?
+        .iter()
+        .filter_map(|e| match (e.left, e.right) {
+            (Some(t), None) => Some(((e.a, e.b), t as usize)),
+            (None, Some(t)) => Some(((e.b, e.a), t as usize)),
+            _ => None,
+        })
+        .collect();
     let mut vertices = mesh.vertices.clone();
     let mut faces = mesh.faces.clone();
     let mut across = Vec::new();
@@ -69,12 +70,13 @@ pub fn fill_holes(mesh: &TriMesh) -> Option<FilledHoles> {
         vertices.push(centre);
         for (&a, &b) in ring.iter().zip(ring.iter().cycle().skip(1)) {
             // The loop runs as its faces do (a -> b in face t): the added face runs b -> a.
-            let &(t, k) = directed.get(&(a, b))?;
+            let t = *rim.get(&(a, b))?;
+            let k = mesh.faces[t].iter().position(|&v| v == a)?;
             faces.push([b, a, c]);
             across.push((t, [(k + 1) % 3, k]));
         }
     }
-    Some(FilledHoles { holes: topology.boundary_loops.len(), boundary_edges: across.len(), mesh: TriMesh { vertices, faces }, across })
+    Some(FilledHoles { holes: topology.boundary_loops.len(), mesh: TriMesh { vertices, faces }, across })
 }
 
 #[cfg(test)]
@@ -95,7 +97,7 @@ mod tests {
         assert_eq!(filled.holes, 2);
         assert_eq!(filled.mesh.faces[..open.n_faces()], open.faces[..]);
         assert_eq!(filled.mesh.vertices[..open.n_vertices()], open.vertices[..]);
-        assert_eq!(filled.boundary_edges, filled.mesh.n_faces() - open.n_faces());
+        assert_eq!(filled.across.len(), filled.mesh.n_faces() - open.n_faces());
         let topology = Topology::build(&filled.mesh).unwrap();
         assert!(topology.boundary_loops.is_empty());
         // The two removed vertices are unused now: V - E + F over used vertices.
