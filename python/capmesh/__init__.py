@@ -141,7 +141,8 @@ def remesh(vertices, faces, faces_target: int = 5000, lat_long: Optional[Tuple[i
     area_equalization, optimize, relax_iterations, polish_iterations, area_steps,
     shape_weight, no_resample, sizing ("uniform", the default, or "curvature[=S]"),
     keep_creases (``--keep-creases``, default False), placement ("fitted", the default, or
-    "on-surface": ``--placement``), fill_holes (``--fill-holes``, default False)."""
+    "on-surface": ``--placement``), fill_holes (``--fill-holes``, default False), no_subdivide
+    (``--no-subdivide``, default False: an input with fewer faces than asked is mapped subdivided)."""
     v, f, report = _capmesh.remesh(_vertices(vertices), _faces(faces), faces_target, lat_long, progress, **options)
     return v, f, _json.loads(report)
 

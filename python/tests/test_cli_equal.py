@@ -90,6 +90,16 @@ def test_remesh_equals_cli(cli, tmp_path):
     assert hrep["filled_holes"] == filled["filled_holes"] == 1 and expected["filled_holes"] == 0
     assert hrep["quality"]["d_face"] == filled["d_face"]
 
+    # The no_subdivide keyword is the CLI's --no-subdivide: the helmet (4190 faces) at 5000
+    # faces is mapped subdivided by default.
+    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 5000, "--report", report, "--quiet", "--no-subdivide")
+    assert done.returncode == 0, done.stderr
+    plain = json.loads(report.read_text())
+    _, _, prep_plain = capmesh.remesh(v, f, faces_target=5000, no_subdivide=True)
+    _, _, prep_fine = capmesh.remesh(v, f, faces_target=5000)
+    assert plain["subdivided"] == prep_plain["subdivided"] == 0 and prep_fine["subdivided"] == 1
+    assert prep_plain["quality"]["d_face"] == plain["d_face"]
+
 
 def test_lat_long_grid_and_options():
     v, f = capmesh.read_mesh(OPEN_MESH)

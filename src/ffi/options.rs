@@ -299,5 +299,7 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         pieces: crate::remesh::Pieces::default(),
         placement,
         holes,
+        // The C ABI keeps the default: a coarse input is subdivided for its map.
+        subdivide_coarse: true,
     })
 }

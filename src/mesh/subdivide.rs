@@ -2,9 +2,10 @@
 //! midpoints left on the flat face (no smoothing), so the subdivided mesh is the same
 //! surface with four times the faces.
 //!
-//! The scale tests and the stage benchmark (issue 27) use it to make large meshes whose map
-//! must be as good as their coarse version's: the geometry, and so the ideal map, does not
-//! change.
+//! `remesh` maps an input with fewer faces than the remesh through it (docs/method.md section
+//! 25), and the scale tests and the stage benchmark (issue 27) make large meshes with it whose
+//! map must be as good as their coarse version's: the geometry, and so the ideal map, does
+//! not change.
 
 use super::fasthash::FastMap;
 use super::geometry::{add, scale};
@@ -23,6 +24,29 @@ pub fn subdivide_midpoint(mesh: &TriMesh, times: usize) -> TriMesh {
         out = subdivide_once(&out);
     }
     out
+}
+
+/// Each child face's corners as barycentric coordinates of its parent face `[a, b, c]`, in
+/// the order [`subdivide_once`] writes the four children: `[a, ab, ca]`, `[ab, b, bc]`,
+/// `[ca, bc, c]`, `[ab, bc, ca]`.
+const CHILD_CORNERS: [[[f64; 3]; 3]; 4] = [
+    [[1.0, 0.0, 0.0], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5]],
+    [[0.5, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.5, 0.5]],
+    [[0.5, 0.0, 0.5], [0.0, 0.5, 0.5], [0.0, 0.0, 1.0]],
+    [[0.5, 0.5, 0.0], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5]],
+];
+
+/// The point with barycentric coordinates `barycentric` in face `face` of
+/// `subdivide_midpoint(mesh, levels)`, as a face of `mesh` and barycentric coordinates there
+/// (the same point: the children lie flat in their parent). Holds for a mesh whose faces all
+/// index its vertices (a validated one), where face `f`'s children are faces `4 f .. 4 f + 3`.
+pub(crate) fn parent_point(mut face: usize, mut barycentric: [f64; 3], levels: usize) -> (usize, [f64; 3]) {
+    for _ in 0..levels {
+        let corners = &CHILD_CORNERS[face % 4];
+        barycentric = std::array::from_fn(|i| (0..3).map(|k| barycentric[k] * corners[k][i]).sum());
+        face /= 4;
+    }
+    (face, barycentric)
 }
 
 /// One 1:4 step of [`subdivide_midpoint`].
@@ -80,6 +104,31 @@ mod tests {
             let nf = normal(&s, f);
             assert!(dot(n0, nf) > 0.99 * (dot(n0, n0) * dot(nf, nf)).sqrt(), "face {f}");
         }
+    }
+
+    /// A point of a twice-subdivided face, taken back to its parent face, is the same point.
+    #[test]
+    fn a_point_of_a_child_face_is_the_same_point_of_its_parent() {
+        let mut m = icosphere(1);
+        // Uneven faces: the children are not similar to their parent.
+        for (i, p) in m.vertices.iter_mut().enumerate() {
+            p[0] *= 1.0 + 0.1 * (i % 3) as f64;
+        }
+        let s = subdivide_midpoint(&m, 2);
+        let at = |mesh: &TriMesh, f: usize, b: [f64; 3]| -> [f64; 3] {
+            let [p, q, r] = mesh.face_points(f);
+            std::array::from_fn(|k| b[0] * p[k] + b[1] * q[k] + b[2] * r[k])
+        };
+        for f in (0..s.faces.len()).step_by(7) {
+            let b = [0.2, 0.3 + 0.001 * (f % 10) as f64, 0.0];
+            let b = [b[0], b[1], 1.0 - b[0] - b[1]];
+            let (parent, pb) = parent_point(f, b, 2);
+            assert_eq!(parent, f / 16);
+            assert!((pb.iter().sum::<f64>() - 1.0).abs() < 1e-12 && pb.iter().all(|&w| w >= 0.0), "{pb:?}");
+            let (x, y) = (at(&s, f, b), at(&m, parent, pb));
+            assert!((0..3).all(|k| (x[k] - y[k]).abs() < 1e-12), "face {f}: {x:?} vs {y:?}");
+        }
+        assert_eq!(parent_point(5, [0.2, 0.3, 0.5], 0), (5, [0.2, 0.3, 0.5]));
     }
 
     #[test]

@@ -68,6 +68,9 @@ pub struct RemeshReport {
     pub dropped_components: usize,
     /// The dropped pieces' share of the input's area.
     pub dropped_area_share: f64,
+    /// Midpoint subdivisions of the input made for its map ([`subdivision_levels`]; 0: mapped
+    /// as it is). The parameterization's counts are the subdivided mesh's.
+    pub subdivided: usize,
     /// Holes of the input filled ([`Holes::Fill`]; 0 otherwise, and for a closed input); the
     /// metrics are against the filled surface.
     pub filled_holes: usize,
@@ -266,11 +269,36 @@ fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress,
     }
 }
 
+/// Most midpoint subdivisions of a coarse input ([`subdivision_levels`]).
+pub const MAX_SUBDIVISIONS: usize = 3;
+
+/// Most faces a coarse input is subdivided to ([`subdivision_levels`]): beyond, a closed
+/// surface would be mapped through a decimated copy again (`--multilevel-above`).
+pub const MAX_SUBDIVIDED_FACES: usize = 200_000;
+
+/// How many times an input of `faces` faces is midpoint-subdivided (1:4, the surface
+/// unchanged) before its map, for a uniform remesh of `asked` faces: the fewest that give
+/// the map at least as many faces as the remesh, at most [`MAX_SUBDIVISIONS`] and
+/// [`MAX_SUBDIVIDED_FACES`] faces. The map is piecewise linear on the input's faces; where
+/// it is strongly anisotropic (a long bone's shaft on the cap) a remesh face spanning
+/// several of them is stretched differently at its corners, and flips that the surface
+/// triangles want fold the planar ones (docs/method.md section 25, "Coarse inputs").
+pub fn subdivision_levels(faces: usize, asked: usize) -> usize {
+    let mut levels = 0;
+    let mut n = faces.max(1);
+    while n < asked && levels < MAX_SUBDIVISIONS && 4 * n <= MAX_SUBDIVIDED_FACES {
+        n *= 4;
+        levels += 1;
+    }
+    levels
+}
+
 /// Largest share of the input's area in pieces besides the largest that `remesh` drops
 /// (specks of a segmentation); above it several pieces are an error.
 pub const DROPPED_AREA_SHARE: f64 = 0.01;
 
-/// [`remesh_here`] on one piece without pinched vertices.
+/// [`remesh_here`] on one piece without pinched vertices: mapped through a subdivided copy
+/// when it is coarser than the remesh ([`subdivision_levels`]).
 fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let start = Instant::now();
     // Refused before the parameterization, which would be wasted.
@@ -278,11 +306,30 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
     if asked > MAX_GRID_FACES {
         return Err(Error::InvalidOption(format!("a cap mesh of about {asked} faces is more than capmesh remeshes (at most {MAX_GRID_FACES}); ask for fewer faces, rings or sectors")));
     }
-    let mut map = parameterize(mesh, &options.param, progress)?;
     let shaped = options.optimize == Optimize::ShapeAndArea && matches!(options.grid, CapGrid::Uniform { .. });
+    let levels = if options.subdivide_coarse && shaped { subdivision_levels(mesh.n_faces(), asked as usize) } else { 0 };
+    if levels > 0 {
+        // The input's own errors name its own elements: checked before it is subdivided
+        // (subdividing drops faces with indices out of range), and the input as it is mapped
+        // again when the subdivided copy's preparation fails (an error there is cheap).
+        crate::mesh::validate::checked_topology(mesh)?;
+        let fine = crate::mesh::subdivide_midpoint(mesh, levels);
+        return match remesh_work(mesh, &fine, levels, options, shaped, progress, locate, start) {
+            Err(Error::Mesh(_)) => remesh_work(mesh, mesh, 0, options, shaped, progress, locate, start),
+            other => other,
+        };
+    }
+    remesh_work(mesh, mesh, 0, options, shaped, progress, locate, start)
+}
+
+/// [`remesh_manifold`] with the map made of `work`, which is `mesh` subdivided `levels`
+/// times: the metrics are against `mesh`, the surface points name its faces.
+#[allow(clippy::too_many_arguments)]
+fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOptions, shaped: bool, progress: &dyn Progress, locate: bool, start: Instant) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
+    let mut map = parameterize(work, &options.param, progress)?;
     // The input's crossing faces, found once for both puncture ends if a remesh crosses.
-    let input_crossings = from_cap::InputCrossings::new(mesh);
-    let (mut result, mut points) = remesh_with(mesh, &map, options, shaped, locate, &input_crossings, progress)?;
+    let input_crossings = from_cap::InputCrossings::new(work);
+    let (mut result, mut points) = remesh_with(work, &map, options, shaped, locate, &input_crossings, progress)?;
     let closed = map.report.kind != SurfaceKind::OpenDisk;
     let uniform = options.shape.sizing == sizing::Sizing::Uniform;
     if shaped && closed && options.param.closed.puncture_end == PunctureEnd::Best && from_cap::end_worth_retrying(&result, uniform) {
@@ -291,7 +338,7 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
             param.closed.puncture_end = other;
             // The other end failing is no reason to fail the remesh already made (unless the
             // user cancelled).
-            let other = parameterize(mesh, &param, progress).and_then(|m| remesh_with(mesh, &m, options, shaped, locate, &input_crossings, progress).map(|r| (m, r)));
+            let other = parameterize(work, &param, progress).and_then(|m| remesh_with(work, &m, options, shaped, locate, &input_crossings, progress).map(|r| (m, r)));
             if let Err(e @ Error::Cancelled(_)) = other {
                 return Err(e);
             }
@@ -313,6 +360,9 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
     }
     let from_cap::FromCap { faces, planar: _, positions, has_plane: _, shape: shape_report, equalization, pullback_seconds, shape_seconds, equalize_seconds, fit, .. } = result;
     let out = TriMesh::new(positions, faces);
+    for p in &mut points {
+        (p.face, p.barycentric) = crate::mesh::subdivide::parent_point(p.face, p.barycentric, levels);
+    }
     let t_metrics = Instant::now();
     let quality = remesh_metrics(mesh, &out);
     let metrics_seconds = t_metrics.elapsed().as_secs_f64();
@@ -334,6 +384,7 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
         dropped_components: 0,
         dropped_area_share: 0.0,
         filled_holes: 0,
+        subdivided: levels,
     };
     Ok((out, report, points))
 }

@@ -104,6 +104,11 @@ pub struct RemeshOptions {
     pub placement: Placement,
     /// What is done with an open surface's holes. Default [`Holes::Keep`].
     pub holes: Holes,
+    /// Map a midpoint-subdivided copy of an input that has fewer faces than the uniform
+    /// remesh asks for ([`subdivision_levels`](super::subdivision_levels)): the same surface,
+    /// its map resolved finer than the remesh's faces. Default true (docs/method.md section
+    /// 25, "Coarse inputs").
+    pub subdivide_coarse: bool,
 }
 
 /// What [`remesh`](super::remesh) does with the holes of an open surface.
@@ -185,6 +190,12 @@ impl RemeshOptions {
         self.holes = holes;
         self
     }
+
+    /// Set whether a coarse input is subdivided for its map ([`RemeshOptions::subdivide_coarse`]).
+    pub fn with_subdivide_coarse(mut self, on: bool) -> Self {
+        self.subdivide_coarse = on;
+        self
+    }
 }
 
 impl Default for RemeshOptions {
@@ -198,6 +209,7 @@ impl Default for RemeshOptions {
             pieces: Pieces::default(),
             placement: Placement::default(),
             holes: Holes::default(),
+            subdivide_coarse: true,
         }
     }
 }

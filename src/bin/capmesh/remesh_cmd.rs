@@ -82,6 +82,11 @@ pub struct RemeshArgs {
     /// missing, which a disk's map squeezes. Off by default
     #[arg(long)]
     pub fill_holes: bool,
+    /// Map the input as it is even when it has fewer faces than the remesh asks for (by
+    /// default such an input is midpoint-subdivided for its map, up to 3 times: the same
+    /// surface, better shaped faces where the map is anisotropic).
+    #[arg(long)]
+    pub no_subdivide: bool,
     /// Vertex placement: fitted (the default: moved along their normals so that the faces
     /// fit the input in the least-squares sense, a lower mean distance to it; the vertices
     /// leave the surface by a fraction of a face's sagitta) or on-surface (on the input,
@@ -124,6 +129,7 @@ struct Flat<'a> {
     dropped_components: usize,
     dropped_area_share: f64,
     filled_holes: usize,
+    subdivided: usize,
     quality: capmesh::MapQuality,
     optimize: capmesh::remesh::Optimize,
     shape: capmesh::remesh::shape::ShapeReport,
@@ -153,6 +159,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         keep_creases,
         largest_piece,
         fill_holes,
+        no_subdivide,
         placement,
         sizing,
         figures,
@@ -171,7 +178,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     let bar = cli_progress::Bar::new(quiet);
     let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
     let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_area_steps(area_steps).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing).with_keep_creases(keep_creases);
-    let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape).with_placement(placement);
+    let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape).with_placement(placement).with_subdivide_coarse(!no_subdivide);
     if largest_piece {
         options = options.with_pieces(capmesh::Pieces::Largest);
     }
@@ -229,6 +236,13 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
             if rep.filled_holes == 1 { "" } else { "s" }
         );
     }
+    if rep.subdivided > 0 {
+        outln!(
+            "{}: mapped with every face split into {} (it has fewer faces than the remesh; --no-subdivide maps it as it is)",
+            input.display(),
+            4usize.pow(rep.subdivided as u32)
+        );
+    }
     if rep.param.kind == capmesh::mesh::SurfaceKind::OpenDisk {
         if let Some(note) = crate::param_cmd::small_boundary_note(&input, &m) {
             outln!("{note}; or remesh with --fill-holes");
@@ -273,6 +287,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
                 dropped_components: rep.dropped_components,
                 dropped_area_share: rep.dropped_area_share,
                 filled_holes: rep.filled_holes,
+                subdivided: rep.subdivided,
                 quality: rep.param.quality,
                 optimize: rep.optimize,
                 shape: rep.shape,
