@@ -42,13 +42,15 @@ fn boundary_vertices(mesh: &TriMesh) -> Vec<usize> {
     out
 }
 
-/// Distance from `p` to the boundary edges of `mesh`.
-fn distance_to_boundary(mesh: &TriMesh, p: [f64; 3]) -> f64 {
-    edge_uses(mesh)
-        .iter()
-        .filter(|(_, &c)| c == 1)
-        .map(|(&(a, b), _)| {
-            let (a, b) = (mesh.vertices[a as usize], mesh.vertices[b as usize]);
+/// The boundary edges of `mesh`, as pairs of end points.
+fn boundary_segments(mesh: &TriMesh) -> Vec<([f64; 3], [f64; 3])> {
+    edge_uses(mesh).iter().filter(|(_, &c)| c == 1).map(|(&(a, b), _)| (mesh.vertices[a as usize], mesh.vertices[b as usize])).collect()
+}
+
+/// Distance from `p` to the segments `rim` ([`boundary_segments`]).
+fn distance_to_boundary(rim: &[([f64; 3], [f64; 3])], p: [f64; 3]) -> f64 {
+    rim.iter()
+        .map(|&(a, b)| {
             let e: [f64; 3] = std::array::from_fn(|k| b[k] - a[k]);
             let w: [f64; 3] = std::array::from_fn(|k| p[k] - a[k]);
             let len2: f64 = e.iter().map(|x| x * x).sum();
@@ -123,7 +125,8 @@ fn check_mesh(name: &str, mesh: &TriMesh, max_d_face: f64) -> (TriMesh, capmesh:
     assert!(rep.quality.d_surface_vertex_relative < 1e-9, "{name}: vertices off the surface");
     if validate(mesh).unwrap().0 == SurfaceKind::OpenDisk {
         let diag = mesh.bounding_box_diagonal();
-        let worst = boundary_vertices(&shaped).iter().map(|&v| distance_to_boundary(mesh, shaped.vertices[v])).fold(0.0, f64::max);
+        let rim = boundary_segments(mesh);
+        let worst = boundary_vertices(&shaped).iter().map(|&v| distance_to_boundary(&rim, shaped.vertices[v])).fold(0.0, f64::max);
         assert!(worst < 1e-9 * diag, "{name}: a boundary vertex is {worst} off the input's boundary");
     }
     (shaped, rep)
@@ -357,7 +360,8 @@ fn resampling_keeps_the_invariants() {
     assert!(rep.quality.d_surface_vertex_relative < 1e-9);
     assert_eq!(rep.quality.zero_area_faces, 0);
     let diag = mesh.bounding_box_diagonal();
-    let worst = boundary_vertices(&out).iter().map(|&v| distance_to_boundary(&mesh, out.vertices[v])).fold(0.0, f64::max);
+    let rim = boundary_segments(&mesh);
+    let worst = boundary_vertices(&out).iter().map(|&v| distance_to_boundary(&rim, out.vertices[v])).fold(0.0, f64::max);
     assert!(worst < 1e-9 * diag, "a boundary vertex is {worst} off the input's boundary");
     assert!(a.mean_min_angle_deg >= b.mean_min_angle_deg && a.share_below_30 <= b.share_below_30.max(0.01), "{a:?} vs {b:?}");
 }

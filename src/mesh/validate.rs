@@ -91,9 +91,13 @@ pub fn boundary_length_ratio(mesh: &TriMesh, topology: &Topology) -> f64 {
 /// of its area: its boundary edges and that ratio (a closed surface with a hole?). `None`
 /// otherwise, and for a mesh that is not a valid surface.
 pub fn small_boundary(mesh: &TriMesh) -> Option<(usize, f64)> {
-    let topology = Topology::build(mesh).ok()?;
+    small_boundary_of(mesh, &Topology::build(mesh).ok()?)
+}
+
+/// [`small_boundary`] of `mesh` whose topology is `topology` (built already).
+pub(crate) fn small_boundary_of(mesh: &TriMesh, topology: &Topology) -> Option<(usize, f64)> {
     let edges: usize = topology.boundary_loops.iter().map(|l| l.len()).sum();
-    let ratio = boundary_length_ratio(mesh, &topology);
+    let ratio = boundary_length_ratio(mesh, topology);
     (edges > 0 && ratio < SMALL_BOUNDARY).then_some((edges, ratio))
 }
 

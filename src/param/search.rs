@@ -176,7 +176,7 @@ pub(crate) fn search_radius<'p>(prepared: &'p Prepared, options: &ParamOptions, 
             // surface with a hole, `validate::small_boundary`): their cap is nearly the
             // sphere, and over Z* the flat objective led the search to a tiny cap (the bunny
             // with a 6-edge hole: Z* 0.9945, mean |d_area| 7.9; from the bound -0.9947, 0.05).
-            let nearly_closed = kind == SurfaceKind::OpenDisk && crate::mesh::validate::boundary_length_ratio(work, topology) < crate::mesh::validate::SMALL_BOUNDARY;
+            let nearly_closed = kind == SurfaceKind::OpenDisk && crate::mesh::validate::small_boundary_of(work, topology).is_some();
             let in_atanh = kind == SurfaceKind::ClosedSphere || nearly_closed;
             let to_z = |w: f64| if in_atanh { w.tanh() } else { w };
             let (z_lo, z_hi) = (z_star_of_radius(MAX_RADIUS), z_star_of_radius(MIN_RADIUS));
