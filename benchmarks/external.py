@@ -162,7 +162,9 @@ def main():
                 out = os.path.join(work, f"{name.split()[0]}_{len(options)}_{faces}.obj")
                 row, r = remesh_row(name, path, out, faces, work, {}, options)
                 if r is not None:
-                    row["input_faces"] = r["parameterization"]["n_faces"]
+                    # The map's faces are the input's split 1:4 `subdivided` times (a coarse input).
+                    row["subdivided"] = r.get("subdivided", 0)
+                    row["input_faces"] = r["parameterization"]["n_faces"] // 4 ** row["subdivided"]
                     row["d_surface_sampled_relative"] = r["d_surface_sampled_relative"]
                     row["map_seconds"] = r["parameterization"]["seconds"]
                     row["lambda"] = (r["parameterization"].get("flatten") or {}).get("lambda")
@@ -188,20 +190,21 @@ def write(rows, args):
         "`misses` names the bars a row misses. d_surf: symmetric face-sampled mean distance over the bounding-box diagonal.",
         "map s: the parameterization's seconds within the command; lambda: the quasi-conformal factor of the initial map",
         "(closed surfaces 0.2, raised by the fallback when the transport stalls; open surfaces' composite map 0.5).",
+        "subdiv: midpoint subdivisions of an input with fewer faces than the remesh, made for its map (docs/method.md section 25).",
         "",
         *bar_counts(rows, args.faces),
         "",
-        "| surface | input faces | target | faces | d_face_rel | mean min angle | % < 30 deg | min angle | self-x faces (input) | d_surf | mean \\|d_area\\| | lambda | map s | seconds | misses |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
+        "| surface | input faces | subdiv | target | faces | d_face_rel | mean min angle | % < 30 deg | min angle | self-x faces (input) | d_surf | mean \\|d_area\\| | lambda | map s | seconds | misses |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
     ]
     write_report(
         "external",
         rows,
         head,
-        lambda r: f"| {r['mesh']} | {r['input_faces']} | {r['target']} | {bar_cells(r)} | "
+        lambda r: f"| {r['mesh']} | {r['input_faces']} | {r['subdivided']} | {r['target']} | {bar_cells(r)} | "
         f"{r['d_surface_sampled_relative']:.2e} | {r['mean_abs_area_distortion']:.4f} | {r['lambda'] if r['lambda'] is not None else '-'} | "
         f"{r['map_seconds']:.2f} | {r['seconds']:.2f} | {', '.join(r['misses']) or '-'} |",
-        lambda r: f"| {r['mesh']} | | {r['target']} | | | | | | | | | | | | exit {r['exit']}: {r['error']} |",
+        lambda r: f"| {r['mesh']} | | | {r['target']} | | | | | | | | | | | | exit {r['exit']}: {r['error']} |",
     )
 
 
