@@ -22,10 +22,11 @@ on anatomical meshes that are not in the repository").
   cut by the volume's lower edge, an open surface whose boundary is far shorter than the surface
   is wide (a closed surface with a hole; docs/method.md section 18, "Short boundaries"), remeshed
   as it is and with `--fill-holes` (section 24).
-- Two synthetic long bones (marching cubes of a capsule with rounded ends, scikit-image): a shaft
+- Three synthetic long bones (marching cubes of a capsule with rounded ends, scikit-image): a shaft
   5-6 times as long as it is wide, where an area-preserving map onto the sphere is anisotropic
   and its transport hardest to start (docs/method.md, "2. Logarithmic and stale Newton steps,
-  continuation").
+  continuation"), and one of a femur's proportions (a shaft 20 times as long as it is wide,
+  heads twice as wide: docs/method.md section 13).
 Then `capmesh remesh --faces N` runs on each (N = 5000 and 20000 by default) with the default
 options, and the table gives the figures of the issue's bars (the same as benchmarks/variants.py),
 each marked where it misses.
@@ -54,7 +55,7 @@ NILEARN = "0.14.1"
 BRAINSPACE = "0.3.0"
 SURFACES = ["pial_left", "pial_right", "white_left", "white_right", "infl_left", "infl_right"]
 # Synthetic long bones: name -> (shaft half-length, shaft radius, end radius, voxel size).
-LONG_BONES = {"long_bone_a": (4.0, 0.6, 1.3, 0.08), "long_bone_b": (5.0, 0.5, 1.2, 0.07)}
+LONG_BONES = {"long_bone_a": (4.0, 0.6, 1.3, 0.08), "long_bone_b": (5.0, 0.5, 1.2, 0.07), "long_bone_femur": (8.0, 0.4, 0.8, 0.06)}
 
 
 def long_bone(path, half_length, shaft, end, voxel):
@@ -182,7 +183,7 @@ def write(rows, args):
         "(downloaded at run time, not committed), both hemispheres, the Conte69 left hemisphere without its medial wall",
         "(an open sheet, BrainSpace's mask), the MNI152 template's brain and head segmented and cut by marching cubes",
         "(`segmentation_surface` in the script, nilearn's wheel; `mni152_head_cut`: the head not padded below, open where",
-        "the volume cuts it, as it is and with `--fill-holes`), two synthetic long bones (marching cubes, `LONG_BONES` in the script)",
+        "the volume cuts it, as it is and with `--fill-holes`), three synthetic long bones (marching cubes, `LONG_BONES` in the script)",
         "and pymeshlab's sample bone (`tests/sample_meshes/bone.ply` of pymeshlab 2025.7.post1), then",
         f"`capmesh remesh SURFACE --faces N` (N = {args.faces.replace(',', ', ')}) with the default options (but where named), timed around the",
         "whole command. Bars of issue 26 (set for 5000 faces): d_face_rel <= 0.035, mean smallest angle >= 48,",
