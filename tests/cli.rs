@@ -213,6 +213,24 @@ fn elongated_closed_surfaces_fall_back_to_a_larger_lambda() {
     assert!(err.contains("bunny_x10.obj") && err.contains("stalled") && err.contains("larger lambda"), "{err}");
 }
 
+/// A long bone that stalls at every `lambda` is mapped by the rescue round (more
+/// stretch-energy iterations), and stderr and the report say so.
+#[test]
+fn a_long_bone_is_mapped_by_the_rescue_round() {
+    let dir = TempDir::new("cli-rescue");
+    let input = dir.join("long_bone.obj");
+    capmesh::io::write_mesh(&input, &common::long_bone(8.5, 212, 32)).unwrap();
+    let report = dir.join("report.json");
+    let out = capmesh().args(["--quiet", "param"]).arg(&input).arg("-o").arg(dir.join("cap.obj")).arg("--report").arg(&report).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("not kept: lambda = 1: optimal transport stalled") && err.contains("mapped with lambda = 0.8 after 80 stretch-energy iterations (the transport stalled at every lambda"), "{err}");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["lambda_fallbacks"].as_array().map(Vec::len), Some(4), "{json}");
+    assert_eq!(json["lambda_fallbacks"][3]["stretch_iterations"], 10, "{json}");
+    assert_eq!(json["flatten"]["stretch"]["iterations"], 80, "{json}");
+}
+
 /// An open surface whose boundary is one small triangle (the bunny with one face removed):
 /// the cap's whole rim is pulled back onto three short edges and a few remeshed faces next to
 /// them have zero area. The remesh says so on stderr and counts them in its report rather

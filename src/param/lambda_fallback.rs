@@ -19,6 +19,15 @@
 //! poor, else the least distorted, and lists the other attempts in
 //! [`super::ParamReport::lambda_fallbacks`]. Meshes that map well at the first `lambda` (all
 //! the shared ones) pay nothing.
+//!
+//! A long bone of a femur's proportions (shaft 20 times as long as wide) stalls at every
+//! `lambda`: its 10 stretch-energy iterations leave the energy 3-10 times its minimum and the
+//! far end still squeezed. When no attempt gave a map at all, the fallbacks from
+//! [`RESCUE_FROM_LAMBDA`] are tried once more with
+//! [`super::ClosedOptions::rescue_stretch_iterations`] iterations (the rescue round): only
+//! surfaces that would otherwise be refused pay for it, and a surface with a poor map keeps
+//! it (more iterations there once turned a poor map of the bunny stretched 300 times into a
+//! stalled transport).
 
 use super::options::ParamOptions;
 use crate::error::Error;
@@ -41,6 +50,27 @@ pub(super) fn next_lambda(options: &ParamOptions, failed: f64) -> Option<f64> {
     options.closed.lambda_fallbacks.iter().copied().filter(|&l| l > failed && l <= 1.0).reduce(f64::min)
 }
 
+/// The smallest `lambda` of the rescue round: when the transport stalled at every `lambda`,
+/// the fallbacks from this one are tried again with
+/// [`super::ClosedOptions::rescue_stretch_iterations`] stretch-energy iterations. Below it
+/// the conformal part of the composition squeezes the far end whatever the stretch map
+/// spreads. The analytic long bone of tests/param_lambda_fallback.rs maps at 0.8 with 40
+/// iterations (mean |d_area| 0.029), at 1 with 20 (0.053).
+pub const RESCUE_FROM_LAMBDA: f64 = 0.8;
+
+/// The first `lambda` of the rescue round: the smallest of the fallbacks and the asked
+/// `lambda` that is at least both [`RESCUE_FROM_LAMBDA`] and the asked one, or `None` when
+/// there is no such round (no fallbacks, or no more iterations than the flattening makes
+/// anyway).
+pub(super) fn rescue_lambda(options: &ParamOptions) -> Option<f64> {
+    let asked = options.closed.flatten.lambda;
+    if options.closed.lambda_fallbacks.is_empty() || options.closed.rescue_stretch_iterations <= options.closed.flatten.stretch.max_iterations {
+        return None;
+    }
+    let from = RESCUE_FROM_LAMBDA.max(asked);
+    options.closed.lambda_fallbacks.iter().copied().chain([asked]).filter(|&l| (from..=1.0).contains(&l)).reduce(f64::min)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -59,6 +89,19 @@ mod tests {
         assert_eq!(next_lambda(&options, 0.9), None, "values above 1 are not lambdas");
         options.closed.lambda_fallbacks.clear();
         assert_eq!(next_lambda(&options, 0.2), None);
+    }
+
+    #[test]
+    fn the_rescue_round_starts_at_0_8_or_the_asked_lambda() {
+        let mut options = ParamOptions::default();
+        assert_eq!(rescue_lambda(&options), Some(RESCUE_FROM_LAMBDA));
+        options.closed.flatten.lambda = 0.9;
+        assert_eq!(rescue_lambda(&options), Some(0.9), "not below the asked lambda");
+        options.closed.rescue_stretch_iterations = options.closed.flatten.stretch.max_iterations;
+        assert_eq!(rescue_lambda(&options), None, "no more iterations: no round");
+        let mut options = ParamOptions::default();
+        options.closed.lambda_fallbacks.clear();
+        assert_eq!(rescue_lambda(&options), None, "--no-lambda-fallback: no round");
     }
 
     #[test]

@@ -25,11 +25,11 @@ pub(crate) mod report;
 pub(crate) mod search;
 
 pub use crate::cap::CapMap;
-pub use lambda_fallback::POOR_MAP_AREA_DISTORTION;
+pub use lambda_fallback::{POOR_MAP_AREA_DISTORTION, RESCUE_FROM_LAMBDA};
 pub use multilevel::COARSE_RATIO;
 pub use options::{
     ClosedOptions, OpenInitialMap, OpenOptions, ParamOptions, PunctureEnd, RefinementOptions, SearchOptions, DEFAULT_AREA_REFINEMENT,
-    DEFAULT_COARSE_VERTICES, DEFAULT_LAMBDA_FALLBACKS, DEFAULT_MULTILEVEL_ABOVE, DEFAULT_OPEN_FACTORED_ITERATIONS, DEFAULT_OPEN_LAMBDA, DEFAULT_SEARCH_SITES, MASS_TOLERANCE,
+    DEFAULT_COARSE_VERTICES, DEFAULT_LAMBDA_FALLBACKS, DEFAULT_MULTILEVEL_ABOVE, DEFAULT_OPEN_FACTORED_ITERATIONS, DEFAULT_RESCUE_STRETCH_ITERATIONS, DEFAULT_OPEN_LAMBDA, DEFAULT_SEARCH_SITES, MASS_TOLERANCE,
     TRANSPORT_TOLERANCE,
 };
 pub use report::{FlattenReport, LambdaFallback, MapQuality, MultilevelReport, ParamReport, PunctureTrial, RadiusSample};
@@ -39,7 +39,7 @@ use crate::error::Error;
 use crate::mesh::{SurfaceKind, TriMesh};
 use crate::progress::{self, Progress, Stage};
 use finish::parameterize_once;
-use lambda_fallback::{is_precision_failure, next_lambda};
+use lambda_fallback::{is_precision_failure, next_lambda, rescue_lambda};
 use prepare::{prepare, Prepared};
 use std::time::Instant;
 
@@ -49,7 +49,9 @@ use std::time::Instant;
 /// below double precision) or whose map is poor is mapped again with the next of
 /// [`ClosedOptions::lambda_fallbacks`] (see `lambda_fallback`);
 /// [`ParamReport::lambda_fallbacks`] lists the attempts not kept, `report.flatten` the
-/// `lambda` used, and `report.seconds` then covers every attempt. A map that still stalls,
+/// `lambda` used, and `report.seconds` then covers every attempt; when the transport stalled
+/// at every one, the fallbacks from [`RESCUE_FROM_LAMBDA`] are tried once more with
+/// [`ClosedOptions::rescue_stretch_iterations`] stretch-energy iterations. A map that still stalls,
 /// folds or is poor is made again with the edges shorter than 5% of the mean edge collapsed
 /// (a degenerate triangulation's needles, [`crate::mesh::short_edges`]) and the better map
 /// kept ([`ParamReport::collapsed_short_edges`]).
@@ -106,36 +108,48 @@ fn collapse_rank(map: &CapMap) -> (usize, bool, f64) {
     (map.report.flipped_faces, is_poor(map), map.report.area_distortion.mean_abs)
 }
 
-/// [`parameterize`] of the prepared mesh, with the lambda fallbacks of a closed surface.
+/// [`parameterize`] of the prepared mesh, with the lambda fallbacks of a closed surface and,
+/// when every one stalled, the rescue round (`lambda_fallback`).
 fn map_prepared(mesh: &TriMesh, prepared: &Prepared, options: &ParamOptions, progress: &dyn Progress, start: Instant) -> Result<CapMap, Error> {
     // Every attempt not returned, the best poor map so far and the last transport failure.
-    let mut attempts = Vec::new();
-    let mut best: Option<(f64, CapMap)> = None;
+    let mut attempts: Vec<LambdaFallback> = Vec::new();
+    let mut best: Option<((f64, usize), CapMap)> = None;
     let mut failure: Option<Error> = None;
     let mut attempt = options.clone();
+    let closed = prepared.kind == SurfaceKind::ClosedSphere;
+    let mut rescuing = false;
     loop {
         let lambda = attempt.closed.flatten.lambda;
+        let stretch_iterations = attempt.closed.flatten.stretch.max_iterations;
+        let tried = |reason: String, mean_abs_area_distortion: Option<f64>| LambdaFallback { lambda, stretch_iterations, reason, mean_abs_area_distortion };
         match parameterize_at_lambda(mesh, prepared, &attempt, progress) {
             Ok(map) if !is_poor(&map) => return Ok(with_fallbacks(map, attempts, start)),
             Ok(map) => {
                 let d = map.report.area_distortion.mean_abs;
-                attempts.push(LambdaFallback { lambda, reason: format!("mean |d_area| {d:.3} is above {POOR_MAP_AREA_DISTORTION}"), mean_abs_area_distortion: Some(d) });
+                attempts.push(tried(format!("mean |d_area| {d:.3} is above {POOR_MAP_AREA_DISTORTION}"), Some(d)));
                 if !best.as_ref().is_some_and(|(_, b)| b.report.area_distortion.mean_abs <= d) {
-                    best = Some((lambda, map));
+                    best = Some(((lambda, stretch_iterations), map));
                 }
             }
             Err(e) if is_precision_failure(&e) => {
-                attempts.push(LambdaFallback { lambda, reason: e.to_string(), mean_abs_area_distortion: None });
+                attempts.push(tried(e.to_string(), None));
                 failure = Some(e);
             }
             Err(e) => return Err(e),
         }
-        match next_lambda(options, lambda).filter(|_| prepared.kind == SurfaceKind::ClosedSphere) {
-            Some(next) => attempt.closed.flatten.lambda = next,
-            None => {
+        // The rescue round only when no attempt gave a map (docs/method.md section 13).
+        let rescue = if closed && !rescuing && best.is_none() { rescue_lambda(options) } else { None };
+        match (next_lambda(options, lambda).filter(|_| closed), rescue) {
+            (Some(next), _) => attempt.closed.flatten.lambda = next,
+            (None, Some(first)) => {
+                rescuing = true;
+                attempt.closed.flatten.lambda = first;
+                attempt.closed.flatten.stretch.max_iterations = options.closed.rescue_stretch_iterations;
+            }
+            (None, None) => {
                 return match (best, failure) {
                     (Some((kept, map)), _) => {
-                        attempts.retain(|a| a.lambda != kept);
+                        attempts.retain(|a| (a.lambda, a.stretch_iterations) != kept);
                         Ok(with_fallbacks(map, attempts, start))
                     }
                     (None, Some(e)) => Err(e),

@@ -220,6 +220,9 @@ pub struct PunctureTrial {
 pub struct LambdaFallback {
     /// The composition factor tried.
     pub lambda: f64,
+    /// The stretch-energy iterations its initial map was allowed: the flattening's own, or
+    /// [`super::ClosedOptions::rescue_stretch_iterations`] in the rescue round.
+    pub stretch_iterations: usize,
     /// Why it was not kept (the transport's error, or the map's distortion).
     pub reason: String,
     /// The map's mean `|d_area|` when there was a map.

@@ -96,3 +96,46 @@ impl Rng {
         (self.next() % n.max(1) as u64) as usize
     }
 }
+
+/// A long bone of revolution about `x`: a shaft of radius 0.4 from `-half` to `half` with a
+/// ball of radius 0.8 blended onto one end and of 0.64 onto the other (a femur's proportions
+/// when `half` is about 8), as `rings` rings of `sectors` vertices evenly spaced in `x` and a
+/// vertex at each tip.
+pub fn long_bone(half: f64, rings: usize, sectors: usize) -> capmesh::TriMesh {
+    let (shaft, end) = (0.4f64, 0.8f64);
+    // The squared radius: the shaft's and each ball's, joined by a smooth maximum.
+    let radius = |x: f64| {
+        let k = 0.3 * shaft * shaft;
+        let mut v = shaft * shaft;
+        for e in [end * end - (x + half).powi(2), (0.8 * end).powi(2) - (x - half).powi(2)] {
+            let h = (0.5 + 0.5 * (e - v) / k).clamp(0.0, 1.0);
+            v = e * h + v * (1.0 - h) + k * h * (1.0 - h);
+        }
+        v.max(0.0).sqrt()
+    };
+    let (left, right) = (-(half + end), half + 0.8 * end);
+    let mut vertices = vec![[left, 0.0, 0.0]];
+    for i in 1..rings {
+        let x = left + (right - left) * i as f64 / rings as f64;
+        let r = radius(x);
+        for j in 0..sectors {
+            let t = std::f64::consts::TAU * j as f64 / sectors as f64;
+            vertices.push([x, r * t.cos(), r * t.sin()]);
+        }
+    }
+    vertices.push([right, 0.0, 0.0]);
+    let at = |i: usize, j: usize| (1 + i * sectors + j % sectors) as u32;
+    let tip = vertices.len() as u32 - 1;
+    let mut faces = Vec::new();
+    for j in 0..sectors {
+        faces.push([0, at(0, j + 1), at(0, j)]);
+        faces.push([tip, at(rings - 2, j), at(rings - 2, j + 1)]);
+    }
+    for i in 0..rings - 2 {
+        for j in 0..sectors {
+            faces.push([at(i, j), at(i, j + 1), at(i + 1, j + 1)]);
+            faces.push([at(i, j), at(i + 1, j + 1), at(i + 1, j)]);
+        }
+    }
+    capmesh::TriMesh::new(vertices, faces)
+}

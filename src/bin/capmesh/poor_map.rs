@@ -15,10 +15,23 @@ const POOR_AREA_DISTORTION: f64 = capmesh::param::POOR_MAP_AREA_DISTORTION;
 /// short edges were collapsed before mapping.
 pub(crate) fn warn_if_poor(input: &Path, r: &capmesh::ParamReport) {
     if let capmesh::param::FlattenReport::Closed(used) = &r.flatten {
+        // The rescue round retries a lambda with more stretch-energy iterations
+        // (capmesh::param::RESCUE_FROM_LAMBDA): its attempts name their iterations.
+        let first_iterations = r.lambda_fallbacks.first().map(|f| f.stretch_iterations);
         for tried in &r.lambda_fallbacks {
-            eprintln!("warning: {}: not kept: lambda = {}: {}", input.display(), tried.lambda, tried.reason);
+            let iterations = if Some(tried.stretch_iterations) != first_iterations { format!(" with {} stretch-energy iterations", tried.stretch_iterations) } else { String::new() };
+            eprintln!("warning: {}: not kept: lambda = {}{iterations}: {}", input.display(), tried.lambda, tried.reason);
         }
-        if !r.lambda_fallbacks.is_empty() {
+        if r.lambda_fallbacks.iter().any(|f| f.lambda == used.lambda) {
+            eprintln!(
+                "warning: {}: mapped with lambda = {} after {} stretch-energy iterations (the transport stalled at every lambda \
+                 with the flattening's {}; report: lambda_fallbacks)",
+                input.display(),
+                used.lambda,
+                used.stretch.iterations,
+                first_iterations.unwrap_or_default()
+            );
+        } else if !r.lambda_fallbacks.is_empty() {
             eprintln!(
                 "warning: {}: mapped with lambda = {} (a less conformal initial map that squeezes the surface less; \
                  report: lambda_fallbacks; --no-lambda-fallback keeps the first lambda's result)",

@@ -32,6 +32,14 @@ crate::named::named_enum!(PunctureEnd, "puncture end", Best => "best", Bottom =>
 /// energy map alone) is the last resort because the fit of the map's angles is worst there.
 pub const DEFAULT_LAMBDA_FALLBACKS: [f64; 3] = [0.5, 0.8, 1.0];
 
+/// The default [`ClosedOptions::rescue_stretch_iterations`]. A long bone of a femur's
+/// proportions (shaft 20 times as long as wide), which stalled at every `lambda` with the
+/// flattening's 10 (and with 20), maps at `lambda` 0.8 with 40 (mean |d_area| 0.231, stretch
+/// energy ratio 1751 -> 1.59, map 7.6 s), 80 (0.211, ratio 1.12, 3.8 s: the transport
+/// converges faster from the better spread start) or 160 (0.222, 4.6 s); the analytic bone of
+/// tests/param_lambda_fallback.rs at 0.029, 0.028 and 0.028. docs/method.md section 13.
+pub const DEFAULT_RESCUE_STRETCH_ITERATIONS: usize = 80;
+
 /// How closed genus-0 surfaces are punctured and flattened before the transport. Build them
 /// from [`ClosedOptions::default`] with the `with_*` setters: new options may be added without
 /// notice.
@@ -48,6 +56,13 @@ pub struct ClosedOptions {
     /// empty keeps the first `lambda`'s result. Default [`DEFAULT_LAMBDA_FALLBACKS`]
     /// (0.5, 0.8, 1).
     pub lambda_fallbacks: Vec<f64>,
+    /// Stretch-energy iterations of a last round of attempts, made only when the transport
+    /// stalled at every `lambda` (no map at all): the fallbacks from
+    /// [`crate::param::RESCUE_FROM_LAMBDA`] are tried again with this many iterations, which
+    /// spread a far end that 10 leave squeezed below double precision (see
+    /// `crate::param::lambda_fallback`). Not more than the flattening's own iterations, or
+    /// no fallbacks: no such round. Default [`DEFAULT_RESCUE_STRETCH_ITERATIONS`].
+    pub rescue_stretch_iterations: usize,
     /// Closed surfaces of more vertices than this are mapped through a decimated copy of
     /// [`ClosedOptions::coarse_vertices`] vertices, whose map is prolonged to every vertex
     /// and refined there (see `crate::param::multilevel`); 0: never. Default
@@ -73,6 +88,7 @@ impl Default for ClosedOptions {
             flatten: ClosedFlattenOptions::default(),
             puncture_end: PunctureEnd::Best,
             lambda_fallbacks: DEFAULT_LAMBDA_FALLBACKS.to_vec(),
+            rescue_stretch_iterations: DEFAULT_RESCUE_STRETCH_ITERATIONS,
             multilevel_above: DEFAULT_MULTILEVEL_ABOVE,
             coarse_vertices: DEFAULT_COARSE_VERTICES,
         }
@@ -101,6 +117,12 @@ impl ClosedOptions {
     /// Set [`ClosedOptions::lambda_fallbacks`] (empty: none).
     pub fn with_lambda_fallbacks(mut self, lambda_fallbacks: Vec<f64>) -> Self {
         self.lambda_fallbacks = lambda_fallbacks;
+        self
+    }
+
+    /// Set [`ClosedOptions::rescue_stretch_iterations`] (0: no last round).
+    pub fn with_rescue_stretch_iterations(mut self, iterations: usize) -> Self {
+        self.rescue_stretch_iterations = iterations;
         self
     }
 

@@ -11,7 +11,7 @@ pub(crate) mod search;
 use crate::cap::Domain;
 use crate::omt::OtOptions;
 use crate::refine::Smoothing;
-pub use closed::{ClosedOptions, PunctureEnd, DEFAULT_COARSE_VERTICES, DEFAULT_LAMBDA_FALLBACKS, DEFAULT_MULTILEVEL_ABOVE};
+pub use closed::{ClosedOptions, PunctureEnd, DEFAULT_COARSE_VERTICES, DEFAULT_LAMBDA_FALLBACKS, DEFAULT_MULTILEVEL_ABOVE, DEFAULT_RESCUE_STRETCH_ITERATIONS};
 pub use open::{OpenInitialMap, OpenOptions, DEFAULT_OPEN_FACTORED_ITERATIONS, DEFAULT_OPEN_LAMBDA};
 pub use refinement::{RefinementOptions, DEFAULT_AREA_REFINEMENT};
 pub use search::{SearchOptions, DEFAULT_SEARCH_SITES, MASS_TOLERANCE};
