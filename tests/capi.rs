@@ -468,6 +468,16 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     o.fill_holes = 1;
     let (_, report) = run(&o);
     assert_eq!((&report["filled_holes"], &report["param"]["kind"]), (&serde_json::json!(1), &serde_json::json!("closed genus-0")), "{report}");
+    o.fill_holes = 0;
+    // An input coarser than the remesh (the ventricle's 8405 faces) is subdivided for its map
+    // by default, mapped as it is when asked.
+    assert_eq!(o.subdivide_coarse, 1);
+    o.faces = 9000;
+    let (_, report) = run(&o);
+    assert!(report["subdivided"].as_u64().is_some_and(|k| k > 0), "{}", report["subdivided"]);
+    o.subdivide_coarse = 0;
+    let (_, report) = run(&o);
+    assert_eq!(report["subdivided"].as_u64(), Some(0), "{}", report["subdivided"]);
 
     let mut out = null_mut();
     let mut refused = |o: &capmesh_v1_remesh_options, words: &str| {
@@ -495,6 +505,9 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     let mut bad = capmesh_v1_remesh_options_default();
     bad.placement = 2;
     refused(&bad, "placement = 2");
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.subdivide_coarse = 2;
+    refused(&bad, "subdivide_coarse = 2");
     let mut bad = capmesh_v1_remesh_options_default();
     bad.sizing_strength = -1.0;
     refused(&bad, "sizing_strength = -1");

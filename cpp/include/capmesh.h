@@ -391,6 +391,12 @@ typedef struct capmesh_v1_remesh_options {
    * surface (the CLI's `--fill-holes`; the remesh is closed); 0 = keep the holes (default).
    */
   int32_t fill_holes;
+  /**
+   * 1 = map an input with fewer faces than the shape+area remesh through a
+   * midpoint-subdivided copy (default: the same surface, better shaped faces where the map
+   * is anisotropic); 0 = map it as it is (the CLI's `--no-subdivide`).
+   */
+  int32_t subdivide_coarse;
 } capmesh_v1_remesh_options;
 
 /**

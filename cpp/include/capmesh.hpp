@@ -196,6 +196,12 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     fill_holes = on ? 1 : 0;
     return *this;
   }
+  /// Map an input with fewer faces than the remesh through a midpoint-subdivided copy (true,
+  /// the default) or as it is (false: the CLI's `--no-subdivide`).
+  RemeshOptions &with_subdivide_coarse(bool on) {
+    subdivide_coarse = on ? 1 : 0;
+    return *this;
+  }
   /// Leave the vertices on the input surface (true) instead of fitting the faces to it in the
   /// least-squares sense (the default; the CLI's `--placement`).
   RemeshOptions &with_vertices_on_surface(bool on) {

@@ -134,6 +134,11 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 		"Fill each hole of an open surface with a fan of faces and remesh the closed surface: for "
 		"a closed surface with a few faces missing (a segmentation cut by the volume's edge), "
 		"which a disk's map squeezes. Off by default: an open surface is remeshed open."));
+	list.addParam(RichBool(
+		"SubdivideCoarse", d.subdivide_coarse != 0, "Subdivide a coarse input",
+		"Map an input with fewer faces than the remesh through a copy with every face split into "
+		"4 (up to 3 times): the same surface, better shaped faces where the map is anisotropic. "
+		"On by default; off maps the input as it is."));
 	addParamOptions(list, d.param);
 }
 
@@ -158,6 +163,7 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 	o.keep_creases = list.getBool("KeepCreases") ? 1 : 0;
 	o.placement = list.getBool("VerticesOnSurface") ? CAPMESH_V1_PLACEMENT_ON_SURFACE : CAPMESH_V1_PLACEMENT_FITTED;
 	o.fill_holes = list.getBool("FillHoles") ? 1 : 0;
+	o.subdivide_coarse = list.getBool("SubdivideCoarse") ? 1 : 0;
 	o.param = readParamOptions(list);
 	return o;
 }

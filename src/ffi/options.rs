@@ -129,6 +129,10 @@ pub struct capmesh_v1_remesh_options {
     /// 1 = fill each hole of an open surface with a fan of faces and remesh the closed
     /// surface (the CLI's `--fill-holes`; the remesh is closed); 0 = keep the holes (default).
     pub fill_holes: i32,
+    /// 1 = map an input with fewer faces than the shape+area remesh through a
+    /// midpoint-subdivided copy (default: the same surface, better shaped faces where the map
+    /// is anisotropic); 0 = map it as it is (the CLI's `--no-subdivide`).
+    pub subdivide_coarse: i32,
 }
 
 /// The defaults documented on each field.
@@ -173,6 +177,7 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
             Placement::OnSurface => CAPMESH_V1_PLACEMENT_ON_SURFACE,
         },
         fill_holes: i32::from(Holes::default() == Holes::Fill),
+        subdivide_coarse: i32::from(RemeshOptions::default().subdivide_coarse),
     }
 }
 
@@ -276,8 +281,13 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         1 => Holes::Fill,
         h => return Err(Failure::invalid_argument(format!("fill_holes = {h} is not 0 (keep the holes) or 1 (fill them)"))),
     };
+    let subdivide_coarse = match o.subdivide_coarse {
+        0 => false,
+        1 => true,
+        v => return Err(Failure::invalid_argument(format!("subdivide_coarse = {v} is not 0 (map the input as it is) or 1 (subdivide a coarse input for its map)"))),
+    };
     let sizing = match finite("sizing_strength", o.sizing_strength)? {
-        s if s == 0.0 => Sizing::Uniform,
+        0.0 => Sizing::Uniform,
         s if s > 0.0 => Sizing::Curvature { strength: s },
         s => return Err(Failure::invalid_argument(format!("sizing_strength = {s} is negative; give 0 (uniform) or a curvature strength > 0"))),
     };
@@ -299,7 +309,6 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         pieces: crate::remesh::Pieces::default(),
         placement,
         holes,
-        // The C ABI keeps the default: a coarse input is subdivided for its map.
-        subdivide_coarse: true,
+        subdivide_coarse,
     })
 }
