@@ -26,15 +26,13 @@ pub fn subdivide_midpoint(mesh: &TriMesh, times: usize) -> TriMesh {
     out
 }
 
-/// Each child face's corners as barycentric coordinates of its parent face `[a, b, c]`, in
-/// the order [`subdivide_once`] writes the four children: `[a, ab, ca]`, `[ab, b, bc]`,
-/// `[ca, bc, c]`, `[ab, bc, ca]`.
-const CHILD_CORNERS: [[[f64; 3]; 3]; 4] = [
-    [[1.0, 0.0, 0.0], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5]],
-    [[0.5, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.5, 0.5]],
-    [[0.5, 0.0, 0.5], [0.0, 0.5, 0.5], [0.0, 0.0, 1.0]],
-    [[0.5, 0.5, 0.0], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5]],
-];
+/// The four children of a parent face `[a, b, c]`, in the order [`subdivide_once`] writes
+/// them, as indices into the parent's six points `[a, b, c, ab, bc, ca]` (its corners, then
+/// its edges' midpoints): `[a, ab, ca]`, `[ab, b, bc]`, `[ca, bc, c]`, `[ab, bc, ca]`.
+const CHILDREN: [[usize; 3]; 4] = [[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]];
+
+/// The parent's six points of [`CHILDREN`] as barycentric coordinates of the parent face.
+const POINTS: [[f64; 3]; 6] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.5, 0.5, 0.0], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5]];
 
 /// The point with barycentric coordinates `barycentric` in face `face` of
 /// `subdivide_midpoint(mesh, levels)`, as a face of `mesh` and barycentric coordinates there
@@ -42,7 +40,7 @@ const CHILD_CORNERS: [[[f64; 3]; 3]; 4] = [
 /// index its vertices (a validated one), where face `f`'s children are faces `4 f .. 4 f + 3`.
 pub(crate) fn parent_point(mut face: usize, mut barycentric: [f64; 3], levels: usize) -> (usize, [f64; 3]) {
     for _ in 0..levels {
-        let corners = &CHILD_CORNERS[face % 4];
+        let corners = CHILDREN[face % 4].map(|k| POINTS[k]);
         barycentric = std::array::from_fn(|i| (0..3).map(|k| barycentric[k] * corners[k][i]).sum());
         face /= 4;
     }
@@ -67,8 +65,8 @@ fn subdivide_once(mesh: &TriMesh) -> TriMesh {
                 (vertices.len() - 1) as u32
             })
         };
-        let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
-        faces.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+        let points = [a, b, c, mid(a, b), mid(b, c), mid(c, a)];
+        faces.extend(CHILDREN.map(|child| child.map(|k| points[k])));
     }
     TriMesh::new(vertices, faces)
 }
