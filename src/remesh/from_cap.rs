@@ -301,7 +301,7 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
         let lift = shape::state::SurfaceLift::new(inverse);
         let track = if closed { None } else { shape::boundary::Track::new(mesh, &map.plane, input_boundary) };
         let density = sizing::vertex_density(mesh, options.shape.sizing, faces.len());
-        let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed, density: density.as_deref() };
+        let input = shape::ShapeInput { lift: &lift, track: track.as_ref(), has_plane: &has_plane, fixed: &fixed, density: density.as_deref(), chart: chart(closed) };
         let shaped = shape::optimize_shape(&input, faces, &mut planar, &mut positions, &options.shape);
         faces = shaped.faces;
         fixed = shaped.stays;
@@ -332,8 +332,8 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
     if shaped {
         let lift = shape::state::SurfaceLift::new(inverse);
         let role: Vec<shape::state::Role> = (0..positions.len()).map(|v| if fixed[v] || !has_plane[v] { shape::state::Role::Fixed } else { shape::state::Role::Free }).collect();
-        let orientation = shape::state::planar_orientation(&faces, &planar, &has_plane, &role);
-        let mut state = shape::state::Shaping { faces, plane: planar, position: positions, hint: vec![u32::MAX; has_plane.len()], role, has_plane: has_plane.clone(), orientation };
+        let orientation = shape::state::planar_orientation(&faces, &planar, &has_plane, &role, chart(closed));
+        let mut state = shape::state::Shaping { faces, plane: planar, position: positions, hint: vec![u32::MAX; has_plane.len()], role, has_plane: has_plane.clone(), orientation, chart: chart(closed) };
         uncross_report = shape::uncross::uncross(&mut state, &lift, options.shape.crease_deg.to_radians());
         if uncross_report.moves + uncross_report.flips + uncross_report.collapses > 0 {
             shape_report.angle_moves += shape::worst::raise_by_search(&mut state, &lift);
@@ -351,6 +351,14 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
     let slivers_at_rim = if shaped && closed { shape::uncross::slivers_on_fixed_edges(&positions, &faces, &has_plane, &fixed) } else { 0 };
     let slivers_at_bottom = if shaped && closed { shape::uncross::slivers_at_bottom(&positions, &faces, &has_plane) } else { 0 };
     Ok(FromCap { faces, planar, positions, has_plane, shape: shape::ShapeReport { uncross: uncross_report, ..shape_report }, equalization, pullback_seconds, shape_seconds, equalize_seconds, mean_min_angle_deg, d_face_relative, slivers_at_rim, slivers_at_bottom, fixed, fit: super::FitReport::default() })
+}
+
+/// Where the shape stage keeps the remesh's faces oriented: on the cap for a closed surface,
+/// whose stereographic plane bends a band around the cap (a long bone's shaft) into an
+/// annulus and refuses the flips its surface triangles want; in the plane for an open one
+/// (docs/method.md section 18, "Orientation on the cap").
+fn chart(closed: bool) -> shape::state::Chart {
+    if closed { shape::state::Chart::Cap } else { shape::state::Chart::Plane }
 }
 
 #[cfg(test)]

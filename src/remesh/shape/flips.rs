@@ -2,8 +2,8 @@
 //! paper keeps the cap grid's connectivity, Sec. 4.2).
 //!
 //! An edge is flipped when the smallest 3-D angle of its two faces grows, the flipped pair is
-//! positively oriented in the map's plane (the planar mesh stays an embedding, so every later
-//! lift lands on the right sheet), no edge is doubled, and neither the old nor the new pair is
+//! positively oriented in the mesh's chart (the map's plane, or the cap for a closed surface:
+//! the mesh stays an embedding, so every later lift lands on the right sheet), no edge is doubled, and neither the old nor the new pair is
 //! bent by more than the crease bound (creases of the input are kept). Each accepted flip
 //! raises the pair's smallest angle, so a pass cannot cycle; passes repeat until none flips.
 
@@ -372,8 +372,7 @@ fn improves(mesh: &Shaping, [a, b, c, d]: [u32; 4], old_tan: f64, cos_crease: f6
     }
     match fan {
         Fan::No => {
-            let pair = (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(a), p(b), p(c))).abs()
-                + (mesh.orientation * crate::mesh::geometry::signed_area_2d(p(b), p(a), p(d))).abs();
+            let pair = mesh.chart.signed_area(p(a), p(b), p(c)).abs() + mesh.chart.signed_area(p(b), p(a), p(d)).abs();
             let floor = MIN_PLANAR_SHARE * pair;
             if !(mesh.oriented(p(c), p(a), p(d), floor) && mesh.oriented(p(d), p(b), p(c), floor)) {
                 return false;
@@ -431,7 +430,7 @@ mod tests {
         // Quad a=(0,0), b=(4,0.2)... split along the long diagonal a-b: two flat slivers.
         let plane = vec![[0.0, 0.0], [4.0, 0.0], [2.0, 0.5], [2.0, -0.5]];
         let position = vec![[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [2.0, 0.5, 0.0], [2.0, -0.5, z_d]];
-        Shaping { faces: vec![[0, 1, 2], [1, 0, 3]], plane, position, hint: vec![u32::MAX; 4], role: vec![Role::Free; 4], has_plane: vec![true; 4], orientation: 1.0 }
+        Shaping { faces: vec![[0, 1, 2], [1, 0, 3]], plane, position, hint: vec![u32::MAX; 4], role: vec![Role::Free; 4], has_plane: vec![true; 4], orientation: 1.0, chart: crate::remesh::shape::state::Chart::Plane }
     }
 
     #[test]
@@ -464,7 +463,7 @@ mod tests {
         role[o as usize] = Role::Fixed;
         let mut has_plane = vec![true; 6];
         has_plane[o as usize] = false;
-        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 6], role, has_plane, orientation: 1.0 };
+        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 6], role, has_plane, orientation: 1.0, chart: crate::remesh::shape::state::Chart::Plane };
         let smallest = |mesh: &Shaping| mesh.faces.iter().map(|f| face_tan(mesh, *f).atan()).fold(f64::INFINITY, f64::min);
         let before = smallest(&mesh);
         assert!(flip_to_max_min_angle(&mut mesh, 170f64.to_radians()) >= 1);

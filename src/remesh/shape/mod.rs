@@ -24,7 +24,8 @@
 //! isotropic sample of the surface (`super::sample`, chosen by `super::remesh`).
 //! A closed surface's rim and bottom disk may first be merged into one vertex (`bottom`).
 //! Every vertex stays exactly on the input surface (it is always the lift of a planar point)
-//! and the planar mesh stays an embedding. The area equalization (`super::equalize`) runs
+//! and the mesh stays an embedding in its chart: the plane for an open surface, the cap for a
+//! closed one (`state::Chart`, docs/method.md section 18, "Orientation on the cap"). The area equalization (`super::equalize`) runs
 //! after it.
 
 pub(crate) mod blocks;
@@ -249,6 +250,9 @@ pub(crate) struct ShapeInput<'a> {
     pub fixed: &'a [bool],
     /// The sizing's relative vertex density at each input vertex (`None`: uniform).
     pub density: Option<&'a [f64]>,
+    /// Where the faces keep their orientation: the cap for a closed surface, the plane for an
+    /// open one ([`state::Chart`]).
+    pub chart: state::Chart,
 }
 
 /// Each remesh vertex's relative density: the input's `density` at its surface point (1 for
@@ -317,9 +321,9 @@ pub(crate) fn optimize_shape(
             }
         })
         .collect();
-    let orientation = state::planar_orientation(&faces, plane, input.has_plane, &role);
+    let orientation = state::planar_orientation(&faces, plane, input.has_plane, &role, input.chart);
     let has_plane = input.has_plane.to_vec();
-    let mut mesh = Shaping { faces, plane: std::mem::take(plane), position: std::mem::take(position), hint: vec![u32::MAX; n], role, has_plane, orientation };
+    let mut mesh = Shaping { faces, plane: std::mem::take(plane), position: std::mem::take(position), hint: vec![u32::MAX; n], role, has_plane, orientation, chart: input.chart };
     let mut arc = vec![0.0f64; n];
     if let Some(track) = input.track {
         for v in 0..n {

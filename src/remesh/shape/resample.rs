@@ -174,7 +174,7 @@ pub(crate) fn split_edges(mesh: &mut Shaping, track: Option<&Track>, arc: &mut V
                 let p = h.map(|v| if v == w { q } else { mesh.plane[v as usize] });
                 let y = h.map(|v| if v == w { x } else { mesh.position[v as usize] });
                 let n1 = cross(sub(y[1], y[0]), sub(y[2], y[0]));
-                mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && norm(n1) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1)
+                mesh.oriented(p[0], p[1], p[2], 0.0) && norm(n1) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1)
             })
         });
         if new_faces.is_empty() || !ok {
@@ -325,7 +325,7 @@ fn merge_keeps_faces(mesh: &Shaping, ring: &[u32], removed: &[u32], (u, v): (u32
         });
         let before = if judge == Judge::Ring { ring_before } else { angle_before(t) };
         let sliver = smallest_angle(y[0], y[1], y[2]) < before.min(COLLAPSE_MIN_ANGLE_DEG.to_radians());
-        mesh.orientation * signed_area_2d(p[0], p[1], p[2]) > 0.0 && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1) && !long && !sliver
+        mesh.oriented(p[0], p[1], p[2], 0.0) && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1) && !long && !sliver
     })
 }
 

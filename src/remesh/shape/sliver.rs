@@ -264,7 +264,7 @@ mod tests {
         let position: Vec<[f64; 3]> = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
         let faces = vec![[4, 1, 2], [4, 2, 3], [4, 3, 0], [4, 0, 1]];
         let role = vec![Role::Fixed, Role::Fixed, Role::Fixed, Role::Fixed, Role::Free];
-        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 5], role, has_plane: vec![true; 5], orientation: 1.0 };
+        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 5], role, has_plane: vec![true; 5], orientation: 1.0, chart: crate::remesh::shape::state::Chart::Plane };
         let before = mesh.faces.iter().map(|f| smallest_angle(mesh.position[f[0] as usize], mesh.position[f[1] as usize], mesh.position[f[2] as usize])).fold(f64::INFINITY, f64::min);
         assert!(before.to_degrees() < SLIVER_DEG);
         assert_eq!(remove_sliver_vertices(&mut mesh), 1);
@@ -288,7 +288,7 @@ mod tests {
         let faces = vec![[0, 1, 3], [1, 2, 3], [1, 0, 4], [2, 1, 4]];
         let role = vec![Role::Fixed, Role::Fixed, Role::Fixed, Role::Free, Role::Fixed];
         let has_plane = vec![true, true, true, true, false];
-        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 5], role, has_plane, orientation: 1.0 };
+        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 5], role, has_plane, orientation: 1.0, chart: crate::remesh::shape::state::Chart::Plane };
         assert_eq!(collapse_rim_slivers(&mut mesh), 1);
         assert_eq!(mesh.faces, vec![[0, 2, 3], [2, 0, 4]]);
         let after = mesh.faces.iter().map(|f| smallest_angle(mesh.position[f[0] as usize], mesh.position[f[1] as usize], mesh.position[f[2] as usize])).fold(f64::INFINITY, f64::min);
@@ -302,7 +302,7 @@ mod tests {
         let position: Vec<[f64; 3]> = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
         let faces = vec![[4, 1, 2], [4, 2, 3], [4, 3, 0], [4, 0, 1]];
         let role = vec![Role::Fixed, Role::Fixed, Role::Fixed, Role::Fixed, Role::Free];
-        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 5], role, has_plane: vec![true; 5], orientation: 1.0 };
+        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; 5], role, has_plane: vec![true; 5], orientation: 1.0, chart: crate::remesh::shape::state::Chart::Plane };
         assert_eq!(remove_sliver_vertices(&mut mesh), 0);
         assert_eq!(mesh.faces.len(), 4);
     }

@@ -123,7 +123,7 @@ pub(crate) fn ring_valid_in_plane(mesh: &Shaping, ring: &[u32], v: usize, q: [f6
         }
         let p = f.map(|u| if u as usize == v { q } else { mesh.plane[u as usize] });
         let now = f.map(|u| mesh.plane[u as usize]);
-        let area_now = mesh.orientation * crate::mesh::geometry::signed_area_2d(now[0], now[1], now[2]);
+        let area_now = mesh.chart.signed_area(now[0], now[1], now[2]);
         mesh.oriented(p[0], p[1], p[2], 1e-6 * area_now.abs())
     })
 }

@@ -56,13 +56,44 @@ impl<'a> SurfaceLift<'a> {
     }
 }
 
-/// The orientation (+1 or -1) held by most planar faces that have a planar point at every
+/// Where the remesh's faces must stay oriented: the test that keeps its planar points an
+/// embedding of the surface's triangulation (docs/method.md section 18, "Orientation on the
+/// cap").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Chart {
+    /// Straight-edged triangles in the map's plane (open surfaces).
+    Plane,
+    /// Great-circle triangles on the cap the plane stands for (closed surfaces: their cap
+    /// covers nearly the whole sphere, whose stereographic plane bends a band around it, a
+    /// long bone's shaft, into an annulus).
+    Cap,
+}
+
+impl Chart {
+    /// The signed area of the triangle `(a, b, c)` of planar points in this chart, in units of
+    /// planar area: on the cap, the signed area of the flat triangle of the three cap points
+    /// divided by the stereographic area factor `4 / (1 + |m|^2)^2` at their planar centroid
+    /// `m` (so the two agree for a small triangle).
+    pub(crate) fn signed_area(self, a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+        match self {
+            Chart::Plane => signed_area_2d(a, b, c),
+            Chart::Cap => {
+                let [x, y, z] = [a, b, c].map(crate::cap::inverse_stereographic);
+                let m = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
+                let r = 1.0 + m[0] * m[0] + m[1] * m[1];
+                0.5 * dot(x, cross(y, z)) * r * r / 4.0
+            }
+        }
+    }
+}
+
+/// The orientation (+1 or -1) held in `chart` by most faces that have a planar point at every
 /// corner and a corner that moves.
-pub(crate) fn planar_orientation(faces: &[[u32; 3]], plane: &[[f64; 2]], has_plane: &[bool], role: &[Role]) -> f64 {
+pub(crate) fn planar_orientation(faces: &[[u32; 3]], plane: &[[f64; 2]], has_plane: &[bool], role: &[Role], chart: Chart) -> f64 {
     let s: f64 = faces
         .iter()
         .filter(|f| f.iter().all(|&v| has_plane[v as usize]) && f.iter().any(|&v| role[v as usize] != Role::Fixed))
-        .map(|f| signed_area_2d(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize]).signum())
+        .map(|f| chart.signed_area(plane[f[0] as usize], plane[f[1] as usize], plane[f[2] as usize]).signum())
         .sum();
     if s < 0.0 { -1.0 } else { 1.0 }
 }
@@ -84,6 +115,8 @@ pub(crate) struct Shaping {
     pub has_plane: Vec<bool>,
     /// +1 or -1: the orientation the planar faces keep.
     pub orientation: f64,
+    /// Where that orientation is judged.
+    pub chart: Chart,
 }
 
 impl Shaping {
@@ -92,10 +125,10 @@ impl Shaping {
         self.has_plane[v as usize]
     }
 
-    /// Whether the planar triangle `(a, b, c)` has the kept orientation and an area above
-    /// `min_area`.
+    /// Whether the triangle `(a, b, c)` of planar points has the kept orientation and an area
+    /// above `min_area` (planar units) in the mesh's [`Chart`].
     pub fn oriented(&self, a: [f64; 2], b: [f64; 2], c: [f64; 2], min_area: f64) -> bool {
-        self.orientation * signed_area_2d(a, b, c) > min_area
+        self.orientation * self.chart.signed_area(a, b, c) > min_area
     }
 
     /// The faces around each vertex.
@@ -271,6 +304,28 @@ mod tests {
         assert_eq!(smallest_angle_tan([0.0; 3], [0.0; 3], [1.0, 0.0, 0.0]), 0.0);
         assert_eq!(smallest_angle_tan([0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]), 0.0);
     }
+
+    /// The cap's signed area agrees with the plane's on a small triangle anywhere (the
+    /// stereographic area factor taken out), has its sign, and is zero for three points on a
+    /// great circle, which the plane bends into a curved arc: the unit circle is the cap's
+    /// equator, so points along it lie on a straight line of the cap.
+    #[test]
+    fn cap_area_is_the_planar_area_of_small_triangles_and_straightens_the_equator() {
+        use super::Chart;
+        use crate::mesh::geometry::signed_area_2d;
+        for centre in [[0.0, 0.0], [0.7, -0.4], [3.0, 2.0], [15.0, -9.0]] {
+            let h = 1e-4 * (1.0f64).max(centre[0] * centre[0] + centre[1] * centre[1]).sqrt();
+            let [a, b, c] = [[0.0, 0.0], [h, 0.2 * h], [0.3 * h, 0.9 * h]].map(|d| [centre[0] + d[0], centre[1] + d[1]]);
+            let (plane, cap) = (signed_area_2d(a, b, c), Chart::Cap.signed_area(a, b, c));
+            assert!(plane > 0.0 && (cap / plane - 1.0).abs() < 1e-3, "{centre:?}: plane {plane:e}, cap {cap:e}");
+            assert!(Chart::Cap.signed_area(a, c, b) < 0.0);
+            assert_eq!(Chart::Plane.signed_area(a, b, c), plane);
+        }
+        let on_equator = |t: f64| [t.cos(), t.sin()];
+        let [a, b, c] = [0.0, 0.3, 0.6].map(on_equator);
+        assert!(signed_area_2d(a, b, c) > 1e-3, "an arc of the unit circle bends in the plane");
+        assert!(Chart::Cap.signed_area(a, b, c).abs() < 1e-15, "{}", Chart::Cap.signed_area(a, b, c));
+    }
 }
 
 /// Meshes for the shape stage's unit tests.
@@ -292,6 +347,6 @@ pub(crate) mod test_meshes {
         }
         let n = plane.len();
         let position = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
-        Shaping { faces, plane, position, hint: vec![u32::MAX; n], role, has_plane: vec![true; n], orientation: 1.0 }
+        Shaping { faces, plane, position, hint: vec![u32::MAX; n], role, has_plane: vec![true; n], orientation: 1.0, chart: super::Chart::Plane }
     }
 }

@@ -1,5 +1,5 @@
 //! Joining consecutive crease points by edge flips (see [`super`]): the edges their planar
-//! segment crosses are flipped while the planar mesh stays an embedding.
+//! segment crosses are flipped while the mesh stays an embedding in its chart.
 
 use crate::remesh::shape::state::{third, Shaping};
 
@@ -48,7 +48,7 @@ impl Around {
 }
 
 /// Make `(u, w)` an edge of `mesh` by flipping the edges that the planar segment `u -> w`
-/// crosses, each only when both its new faces are oriented in the plane (so the planar mesh
+/// crosses, each only when both its new faces are oriented in the mesh's chart (so the mesh
 /// stays an embedding). Returns the flips made.
 pub(super) fn join(mesh: &mut Shaping, around: &mut Around, u: u32, w: u32) -> usize {
     if ![u, w].iter().all(|&v| mesh.planar(v)) {
@@ -139,7 +139,7 @@ mod tests {
         faces.push([a(2), b(2), 1]);
         let position = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
         let n = plane.len();
-        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; n], role: vec![Role::Free; n], has_plane: vec![true; n], orientation: 1.0 };
+        let mut mesh = Shaping { faces, plane, position, hint: vec![u32::MAX; n], role: vec![Role::Free; n], has_plane: vec![true; n], orientation: 1.0, chart: crate::remesh::shape::state::Chart::Plane };
         let area = |m: &Shaping| m.faces.iter().map(|f| crate::mesh::geometry::signed_area_2d(m.plane[f[0] as usize], m.plane[f[1] as usize], m.plane[f[2] as usize])).sum::<f64>();
         let before = area(&mesh);
         assert!(mesh.faces.iter().all(|f| mesh.oriented(mesh.plane[f[0] as usize], mesh.plane[f[1] as usize], mesh.plane[f[2] as usize], 0.0)));

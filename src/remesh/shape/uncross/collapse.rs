@@ -128,7 +128,7 @@ mod tests {
         let mut faces: Vec<[u32; 3]> = (1..=6u32).map(|i| [0, i, i % 6 + 1]).collect();
         faces.push([1, 7, 8]);
         let role: Vec<Role> = (0..9).map(|v| if v == 0 { Role::Free } else { Role::Fixed }).collect();
-        Shaping { faces, plane, position, hint: vec![u32::MAX; 9], role, has_plane: vec![true; 9], orientation: 1.0 }
+        Shaping { faces, plane, position, hint: vec![u32::MAX; 9], role, has_plane: vec![true; 9], orientation: 1.0, chart: crate::remesh::shape::state::Chart::Plane }
     }
 
     fn crossing(m: &Shaping) -> Vec<u32> {

@@ -13,8 +13,8 @@
 //! centroid of the neighbours or towards one neighbour, or along the relaxation step). A change
 //! is kept only if it lowers the crossings among the faces around it (or, for a sliver, raises
 //! its smallest angle without adding a crossing) and leaves no new angle below the bound; every
-//! planar face stays oriented, so the planar mesh stays an embedding and no vertex leaves the
-//! surface.
+//! face stays oriented in the mesh's chart (`super::state::Chart`), so the mesh stays an
+//! embedding and no vertex leaves the surface.
 
 mod collapse;
 mod local;
