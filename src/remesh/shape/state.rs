@@ -63,9 +63,9 @@ impl<'a> SurfaceLift<'a> {
 pub(crate) enum Chart {
     /// Straight-edged triangles in the map's plane (open surfaces).
     Plane,
-    /// Great-circle triangles on the cap the plane stands for (closed surfaces: their cap
-    /// covers nearly the whole sphere, whose stereographic plane bends a band around it, a
-    /// long bone's shaft, into an annulus).
+    /// Triangles on the cap the plane stands for, oriented as the flat triangle through their
+    /// three cap points (closed surfaces: their cap covers nearly the whole sphere, whose
+    /// stereographic plane bends a band around it, a long bone's shaft, into an annulus).
     Cap,
 }
 
@@ -113,7 +113,7 @@ pub(crate) struct Shaping {
     /// Whether each vertex has a planar point (not a closed surface's bottom): faces
     /// touching one that has not are never changed.
     pub has_plane: Vec<bool>,
-    /// +1 or -1: the orientation the planar faces keep.
+    /// +1 or -1: the orientation the faces keep in `chart`.
     pub orientation: f64,
     /// Where that orientation is judged.
     pub chart: Chart,
