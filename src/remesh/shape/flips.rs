@@ -3,8 +3,9 @@
 //!
 //! An edge is flipped when the smallest 3-D angle of its two faces grows, the flipped pair is
 //! positively oriented in the mesh's chart (the map's plane, or the cap for a closed surface:
-//! the mesh stays an embedding, so every later lift lands on the right sheet), no edge is doubled, and neither the old nor the new pair is
-//! bent by more than the crease bound (creases of the input are kept). Each accepted flip
+//! the mesh stays an embedding, so every later lift lands on the right sheet), no edge is
+//! doubled, and neither the old nor the new pair is bent by more than the crease bound
+//! (creases of the input are kept). Each accepted flip
 //! raises the pair's smallest angle, so a pass cannot cycle; passes repeat until none flips.
 
 use super::state::{edge_faces, smallest_angle_tan, third, Shaping};

@@ -25,8 +25,8 @@
 //! A closed surface's rim and bottom disk may first be merged into one vertex (`bottom`).
 //! Every vertex stays exactly on the input surface (it is always the lift of a planar point)
 //! and the mesh stays an embedding in its chart: the plane for an open surface, the cap for a
-//! closed one (`state::Chart`, docs/method.md section 18, "Orientation on the cap"). The area equalization (`super::equalize`) runs
-//! after it.
+//! closed one (`state::Chart`, docs/method.md section 18, "Orientation on the cap"). The area
+//! equalization (`super::equalize`) runs after it.
 
 pub(crate) mod blocks;
 pub(crate) mod bottom;

@@ -71,9 +71,10 @@ pub(crate) enum Chart {
 
 impl Chart {
     /// The signed area of the triangle `(a, b, c)` of planar points in this chart, in units of
-    /// planar area: on the cap, the signed area of the flat triangle of the three cap points
-    /// divided by the stereographic area factor `4 / (1 + |m|^2)^2` at their planar centroid
-    /// `m` (so the two agree for a small triangle).
+    /// planar area: on the cap, half the triple product of the three cap points (the flat
+    /// triangle's signed area times its plane's distance from the sphere's centre, which is
+    /// about 1 for a small triangle) divided by the stereographic area factor
+    /// `4 / (1 + |m|^2)^2` at their planar centroid `m`, so the two agree for a small triangle.
     pub(crate) fn signed_area(self, a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
         match self {
             Chart::Plane => signed_area_2d(a, b, c),
