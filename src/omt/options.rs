@@ -109,12 +109,34 @@ pub enum OmtError {
         /// Requested tolerance.
         tolerance: f64,
     },
+    /// A closed surface's transport failed at every `lambda` of its fallbacks, the rescue
+    /// round's included (`crate::param::lambda_fallback`): the surface is too elongated for the
+    /// map onto the cap.
+    #[error("optimal transport failed at every lambda tried ({tried}), the last time {last}: the closed surface is too elongated for capmesh's map onto the cap (docs/method.md section 13, \"Not covered\"); please report this mesh")]
+    EveryLambdaFailed {
+        /// The `lambda` values tried, with the rescue round's stretch-energy iterations.
+        tried: String,
+        /// How the last attempt failed ([`OmtError::outcome`]).
+        last: String,
+    },
     /// Bad arguments (lengths, non-positive masses).
     #[error("invalid transport problem: {0}")]
     Invalid(String),
     /// Cancelled through the progress callback.
     #[error(transparent)]
     Cancelled(#[from] Cancelled),
+}
+
+impl OmtError {
+    /// How the transport failed, without the remedy the message names (for
+    /// [`OmtError::EveryLambdaFailed`], where every remedy was tried).
+    pub fn outcome(&self) -> String {
+        match self {
+            OmtError::Stalled { iteration, error } => format!("stalled at iteration {iteration} with relative mass error {error:.3e}"),
+            OmtError::NotConverged { iterations, error, .. } => format!("did not converge in {iterations} iterations (relative mass error {error:.3e})"),
+            other => other.to_string(),
+        }
+    }
 }
 
 /// What the solver did.

@@ -42,7 +42,7 @@ pub const POOR_MAP_AREA_DISTORTION: f64 = 0.3;
 /// Whether `error` is the transport losing precision on a too compressive initial map (the
 /// failure a larger `lambda` can cure), as opposed to bad input or a cancellation.
 pub(super) fn is_precision_failure(error: &Error) -> bool {
-    matches!(error, Error::Transport(OmtError::Stalled { .. } | OmtError::NotConverged { .. } | OmtError::Triangulation(_)))
+    matches!(error, Error::Transport(OmtError::Stalled { .. } | OmtError::NotConverged { .. } | OmtError::Triangulation(_) | OmtError::EveryLambdaFailed { .. }))
 }
 
 /// The next `lambda` to try after `failed`, if any.
@@ -57,6 +57,23 @@ pub(super) fn next_lambda(options: &ParamOptions, failed: f64) -> Option<f64> {
 /// spreads. The analytic long bone of tests/param_lambda_fallback.rs maps at 0.8 with 40
 /// iterations (mean |d_area| 0.029), at 1 with 20 (0.053).
 pub const RESCUE_FROM_LAMBDA: f64 = 0.8;
+
+/// The error of a closed surface whose every attempt in `attempts` failed (the last with
+/// `last`): [`OmtError::EveryLambdaFailed`] naming what was tried when there was more than one
+/// attempt, else `last` itself (no fallbacks: its message names the remedy).
+pub(super) fn every_lambda_failed(attempts: &[super::LambdaFallback], last: Error) -> Error {
+    let Error::Transport(omt) = &last else { return last };
+    if attempts.len() < 2 {
+        return last;
+    }
+    let first = attempts[0].stretch_iterations;
+    let tried = attempts
+        .iter()
+        .map(|a| if a.stretch_iterations == first { format!("{}", a.lambda) } else { format!("{} with {} stretch-energy iterations", a.lambda, a.stretch_iterations) })
+        .collect::<Vec<_>>()
+        .join(", ");
+    Error::Transport(OmtError::EveryLambdaFailed { tried, last: omt.outcome() })
+}
 
 /// The first `lambda` of the rescue round: the smallest of the fallbacks and the asked
 /// `lambda` that is at least both [`RESCUE_FROM_LAMBDA`] and the asked one, or `None` when

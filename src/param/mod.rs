@@ -39,7 +39,7 @@ use crate::error::Error;
 use crate::mesh::{SurfaceKind, TriMesh};
 use crate::progress::{self, Progress, Stage};
 use finish::parameterize_once;
-use lambda_fallback::{is_precision_failure, next_lambda, rescue_lambda};
+use lambda_fallback::{every_lambda_failed, is_precision_failure, next_lambda, rescue_lambda};
 use prepare::{prepare, Prepared};
 use std::time::Instant;
 
@@ -152,7 +152,7 @@ fn map_prepared(mesh: &TriMesh, prepared: &Prepared, options: &ParamOptions, pro
                         attempts.retain(|a| (a.lambda, a.stretch_iterations) != kept);
                         Ok(with_fallbacks(map, attempts, start))
                     }
-                    (None, Some(e)) => Err(e),
+                    (None, Some(e)) => Err(every_lambda_failed(&attempts, e)),
                     // Each attempt keeps a map or a failure; this is for the compiler.
                     (None, None) => Err(Error::Internal("no parameterization was attempted".into())),
                 };
