@@ -228,3 +228,15 @@ pub struct LambdaFallback {
     /// The map's mean `|d_area|` when there was a map.
     pub mean_abs_area_distortion: Option<f64>,
 }
+
+impl LambdaFallback {
+    /// The attempt as `lambda`, with its stretch-energy iterations when they are not
+    /// `flattening`'s (the rescue round's): `0.8` or `0.8 with 80 stretch-energy iterations`.
+    pub fn describe(&self, flattening: usize) -> String {
+        if self.stretch_iterations == flattening {
+            format!("{}", self.lambda)
+        } else {
+            format!("{} with {} stretch-energy iterations", self.lambda, self.stretch_iterations)
+        }
+    }
+}

@@ -19,8 +19,7 @@ pub(crate) fn warn_if_poor(input: &Path, r: &capmesh::ParamReport) {
         // (capmesh::param::RESCUE_FROM_LAMBDA): its attempts name their iterations.
         let first_iterations = r.lambda_fallbacks.first().map(|f| f.stretch_iterations);
         for tried in &r.lambda_fallbacks {
-            let iterations = if Some(tried.stretch_iterations) != first_iterations { format!(" with {} stretch-energy iterations", tried.stretch_iterations) } else { String::new() };
-            eprintln!("warning: {}: not kept: lambda = {}{iterations}: {}", input.display(), tried.lambda, tried.reason);
+            eprintln!("warning: {}: not kept: lambda = {}: {}", input.display(), tried.describe(first_iterations.unwrap_or_default()), tried.reason);
         }
         if r.lambda_fallbacks.iter().any(|f| f.lambda == used.lambda) {
             eprintln!(

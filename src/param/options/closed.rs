@@ -36,8 +36,9 @@ pub const DEFAULT_LAMBDA_FALLBACKS: [f64; 3] = [0.5, 0.8, 1.0];
 /// proportions (shaft 20 times as long as wide), which stalled at every `lambda` with the
 /// flattening's 10 (and with 20), maps at `lambda` 0.8 with 40 (mean |d_area| 0.231, stretch
 /// energy ratio 1751 -> 1.59, map 7.6 s), 80 (0.211, ratio 1.12, 3.8 s: the transport
-/// converges faster from the better spread start) or 160 (0.222, 4.6 s); the analytic bone of
-/// tests/param_lambda_fallback.rs at 0.029, 0.028 and 0.028. docs/method.md section 13.
+/// converges faster from the better spread start) or 160 (0.222, 4.6 s); an analytic bone of
+/// revolution (tests/common `long_bone` at half length 8, 200 rings of 24 vertices, written
+/// to OBJ) at 0.029, 0.028 and 0.028. docs/method.md section 13.
 pub const DEFAULT_RESCUE_STRETCH_ITERATIONS: usize = 80;
 
 /// How closed genus-0 surfaces are punctured and flattened before the transport. Build them
