@@ -207,7 +207,7 @@ void optimize_options() {
   DMesh input = read<DMesh>(helmet);
   capmesh::RemeshOptions o = capmesh::RemeshOptions::uniform(1000);
   CHECK(o.optimize == CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA);
-  CHECK(o.relax_iterations == 40 && o.polish_iterations == 85 && o.area_steps == 6 && o.shape_weight == 0.1 && o.resample == 1 && o.keep_creases == 0);
+  CHECK(o.relax_iterations == 40 && o.polish_iterations == 85 && o.area_steps == 6 && o.shape_weight == 0.13 && o.resample == 1 && o.keep_creases == 0);
   CHECK(capmesh::RemeshOptions::uniform(1000).with_keep_creases(true).keep_creases == 1);
   CHECK(o.fill_holes == 0 && capmesh::RemeshOptions::uniform(1000).with_fill_holes(true).fill_holes == 1);
   CHECK(o.subdivide_coarse == 1 && capmesh::RemeshOptions::uniform(1000).with_subdivide_coarse(false).subdivide_coarse == 0);

@@ -51,7 +51,7 @@ def test_filters_are_registered_with_capmesh_defaults(plugin, mesh_file):
     assert remesh["grid"] == 0 and remesh["faces"] > 0 and remesh["rings"] > 0 and remesh["sectors"] > 0
     assert remesh["optimize"] == 0  # shape+area
     assert remesh["relaxiterations"] == 40 and remesh["polishiterations"] == 85 and remesh["areasteps"] == 6
-    assert remesh["shapeweight"] == pytest.approx(0.1) and remesh["resample"]
+    assert remesh["shapeweight"] == pytest.approx(0.13) and remesh["resample"]
     assert remesh["sizingstrength"] == 0.0 and not remesh["keepcreases"] and not remesh["verticesonsurface"]
     assert not remesh["fillholes"] and remesh["subdividecoarse"]
     assert ms.filter_parameter_values("capmesh_harmonics_reconstruction")["order"] > 0

@@ -55,6 +55,15 @@ pub fn triangle_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
     0.5 * (Vector3::from(b) - a).cross(&(Vector3::from(c) - a)).norm()
 }
 
+/// The gradient of `ln` of the area of triangle `xab` with respect to its corner `x`:
+/// `n x (b - a) / |n|^2` with `n = (a - x) x (b - x)` (infinite or NaN without area).
+#[inline]
+pub(crate) fn ln_triangle_area_gradient(x: [f64; 3], a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    let n = cross(sub(a, x), sub(b, x));
+    let nn = dot(n, n);
+    cross(n, sub(b, a)).map(|c| c / nn)
+}
+
 /// Signed area of the planar triangle `abc` (positive when counter-clockwise).
 #[inline]
 pub fn signed_area_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {

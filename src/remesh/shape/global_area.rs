@@ -5,18 +5,21 @@
 //! face to face, but a smooth one (a region whose faces are all a little too large) only
 //! diffuses out about a ring per iteration. This step solves for all free vertices' planar
 //! displacements `u` at once:
-//! `min sum_f (grad ln P_f . u - r_f)^2 + alpha sum_e |u_i - u_j|^2 / l_e^2`,
-//! where `P_f` is face `f`'s planar area (its surface area changes in the same ratio while
-//! the map's local scale is held), `r_f = ln(target_f / S_f)` the log error of its surface
-//! area `S_f` and `l_e` an edge's planar length. The second term keeps the displacement
-//! smooth at the faces' own scale, so the step carries the error's low frequencies and leaves
-//! the shape to the polish. The normal equations are sparse and symmetric positive definite
-//! (2 unknowns a vertex, 2 x 2 blocks between neighbours) and solved by sparse Cholesky.
+//! `min sum_f (g_f . u - r_f)^2 + alpha sum_e |u_i - u_j|^2 / l_e^2`,
+//! where `r_f = ln(target_f / S_f)` is the log error of face `f`'s surface area `S_f`, `g_f`
+//! the gradient of `ln S_f` with respect to its corners' planar points (through the inverse
+//! map's differential where each corner lies: the map is linear on each input face) and `l_e`
+//! an edge's planar length. The second term keeps the displacement smooth at the faces' own
+//! scale, so the step carries the error's low frequencies and leaves the shape to the polish.
+//! The normal equations are sparse and symmetric positive definite (2 unknowns a vertex, 2 x 2
+//! blocks between neighbours) and solved by sparse Cholesky. The step is applied to every
+//! vertex at once ([`apply_step`]), as it was solved.
 
-use super::smooth::{ring_faces_same_side, ring_valid_in_plane};
-use super::state::{ring_least, smallest_angle_tan, Incidence, Role, Shaping, SurfaceLift};
+use super::state::{Incidence, Role, Shaping, SurfaceLift};
 use crate::linalg::SpdSolver;
-use crate::mesh::geometry::{signed_area_2d, triangle_area};
+use crate::mesh::geometry::{cross, dot, ln_triangle_area_gradient, signed_area_2d, sub, triangle_area};
+use nalgebra::{Matrix3x2, Vector3};
+use rayon::prelude::*;
 use crate::mesh::topology::within_rings;
 use super::blocks::BlockSystem;
 
@@ -26,20 +29,11 @@ use super::blocks::BlockSystem;
 /// 40-50% more time and lower angles.
 pub(crate) const AREA_STEP_SPACING: usize = 5;
 
-/// A vertex takes its global step only where the smallest angle of its faces stays at least
-/// this (degrees), or does not fall below its present one: the step does not weigh shape.
-/// 30 let the hand's mean smallest angle fall by 0.2 degrees; 45 kept every shared mesh's
-/// within 0.2 of its value without the steps, the hand's unchanged.
-const ANGLE_GUARD_DEG: f64 = 45.0;
-
 /// Rings of vertices around a closed surface's merged bottom vertex that the global steps
 /// leave still (the polish still moves them): with one, the closed hippocampus at 10000 faces
 /// kept a 25.6-degree smallest angle, but the decimated lung lobe's star a 12.6-degree spoke
 /// face.
 const BOTTOM_RINGS: usize = 2;
-
-/// Halvings of a vertex's step before it stays.
-const HALVINGS: usize = 3;
 
 /// Weight of the smoothness term (`alpha` above), relative to the area term: smaller moves
 /// rougher error out in one step but disturbs the shape more. On the bunny, bird skull,
@@ -53,14 +47,24 @@ const DAMPING: f64 = 1e-6;
 
 /// The planar displacement of every vertex (zero for those that do not move freely), or
 /// `None` when nothing moves or the system cannot be solved. `ln_target(t)` is `ln` of face
-/// `t`'s target area; `alpha` weighs the smoothness term. `solver` keeps its analysis for
-/// the next step while the flips leave the vertices' neighbours as they are.
-pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target: &dyn Fn(usize) -> f64, alpha: f64, solver: &mut SpdSolver) -> Option<Vec<[f64; 2]>> {
+/// `t`'s target area; `alpha` weighs the smoothness term. With `lift`, each face's gradient is
+/// its surface area's through the inverse map's differential at each corner; without (a mesh
+/// whose planar points are its surface points) it is its planar area's. `solver` keeps its
+/// analysis for the next step while the flips leave the vertices' neighbours as they are.
+pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, lift: Option<&SurfaceLift>, ln_target: &dyn Fn(usize) -> f64, alpha: f64, solver: &mut SpdSolver) -> Option<Vec<[f64; 2]>> {
     // Vertices within BOTTOM_RINGS edges of a closed surface's merged bottom (no planar
     // point) stay: the plane is most distorted there and the spoke faces have no planar area.
     let bottom: Vec<bool> = mesh.has_plane.iter().map(|&p| !p).collect();
     let near = if bottom.contains(&true) { within_rings(&bottom, &mesh.faces, BOTTOM_RINGS) } else { bottom };
     let mut system = BlockSystem::new(mesh, incidence, |v| mesh.role[v] == Role::Free && !near[v])?;
+    // Each unknown vertex's differential of the inverse map where it lies.
+    let jacobian: Vec<Option<Matrix3x2<f64>>> = match lift {
+        Some(lift) => (0..mesh.plane.len())
+            .into_par_iter()
+            .map(|v| if system.unknown(v as u32) == u32::MAX { None } else { lift.lift(mesh.plane[v], mesh.hint[v]).and_then(|(_, face)| lift.jacobian(face)) })
+            .collect(),
+        None => Vec::new(),
+    };
     for (t, f) in mesh.faces.iter().enumerate() {
         if !f.iter().all(|&u| mesh.has_plane[u as usize]) || f.iter().all(|&u| system.unknown(u) == u32::MAX) {
             continue;
@@ -73,7 +77,15 @@ pub(crate) fn global_area_step(mesh: &Shaping, incidence: &Incidence, ln_target:
             continue;
         }
         let r = ln_target(t) - surface.ln();
-        let grad = ln_area_gradient(p, planar);
+        let mut grad = ln_area_gradient(p, planar);
+        // Through the inverse map's differential at each corner where it is known: the
+        // first-order change of the surface area itself.
+        for k in 0..3 {
+            if let Some(Some(j)) = jacobian.get(f[k] as usize) {
+                let g = j.tr_mul(&Vector3::from(ln_triangle_area_gradient(x[k], x[(k + 1) % 3], x[(k + 2) % 3])));
+                grad[k] = [g[0], g[1]];
+            }
+        }
         let ids = f.map(|u| system.unknown(u));
         for i in 0..3 {
             if ids[i] == u32::MAX {
@@ -128,40 +140,74 @@ pub(crate) fn ln_area_gradient(p: [[f64; 2]; 3], planar: f64) -> [[f64; 2]; 3] {
     })
 }
 
-/// Vertex `v` moved by its global step `u` (clamped to a quarter of its shortest planar
-/// edge, where the linearisation holds), halved until its faces stay valid in the plane and
-/// on the surface and keep their smallest angle ([`ANGLE_GUARD_DEG`]); `None` if none does.
-pub(crate) fn move_vertex(mesh: &Shaping, incidence: &Incidence, v: usize, lift: &SurfaceLift, u: [f64; 2]) -> Option<([f64; 2], [f64; 3], u32)> {
-    let ring = incidence.of(v);
-    let q0 = mesh.plane[v];
-    let shortest = ring
-        .iter()
-        .flat_map(|&t| mesh.faces[t as usize])
-        .filter(|&w| w as usize != v && mesh.has_plane[w as usize])
-        .map(|w| {
-            let p = mesh.plane[w as usize];
-            (p[0] - q0[0]).hypot(p[1] - q0[1])
+/// A vertex's proposed place: planar point, surface point and hint (`u32::MAX`: keep its own).
+type Proposal = Option<([f64; 2], [f64; 3], u32)>;
+
+/// The global step `u` applied to every vertex at once, as it was solved (a vertex that
+/// stays while its neighbours move makes a new area error). `place(q, hint)` is the surface
+/// point of planar point `q` and the face it lies in (the lift, trying the vertex's hint).
+/// The vertices of a face that would fold, in the chart or on the surface, keep their place,
+/// and the faces are checked again until none folds. Returns the vertices moved.
+pub(crate) fn apply_step(mesh: &mut Shaping, u: &[[f64; 2]], place: &(dyn Fn([f64; 2], u32) -> Option<([f64; 3], u32)> + Sync)) -> usize {
+    let proposals: Vec<Proposal> = (0..mesh.plane.len())
+        .into_par_iter()
+        .map(|v| {
+            if u[v] == [0.0, 0.0] {
+                return None;
+            }
+            let q = [mesh.plane[v][0] + u[v][0], mesh.plane[v][1] + u[v][1]];
+            place(q, mesh.hint[v]).map(|(x, h)| (q, x, h))
         })
-        .fold(f64::INFINITY, f64::min);
-    let len = u[0].hypot(u[1]);
-    if !(len > 0.0) || !shortest.is_finite() {
-        return None;
-    }
-    let scale = (0.25 * shortest / len).min(1.0);
-    let floor = ring_least(mesh, ring, v, mesh.position[v], smallest_angle_tan).min(ANGLE_GUARD_DEG.to_radians().tan());
-    let mut step = scale;
-    for _ in 0..=HALVINGS {
-        let q = [q0[0] + step * u[0], q0[1] + step * u[1]];
-        if ring_valid_in_plane(mesh, ring, v, q) {
-            if let Some((x, face)) = lift.lift(q, mesh.hint[v]) {
-                if ring_faces_same_side(mesh, ring, v, x) && ring_least(mesh, ring, v, x, smallest_angle_tan) >= floor {
-                    return Some((q, x, face));
-                }
+        .collect();
+    let mut moving: Vec<bool> = proposals.iter().map(Option::is_some).collect();
+    loop {
+        let folded: Vec<usize> = mesh
+            .faces
+            .par_iter()
+            .enumerate()
+            .filter(|(_, f)| f.iter().any(|&w| moving[w as usize]) && folds(mesh, f, &proposals, &moving))
+            .map(|(t, _)| t)
+            .collect();
+        if folded.is_empty() {
+            break;
+        }
+        for t in folded {
+            for w in mesh.faces[t] {
+                moving[w as usize] = false;
             }
         }
-        step *= 0.5;
     }
-    None
+    let mut moved = 0;
+    for (v, proposal) in proposals.into_iter().enumerate() {
+        if let (true, Some((q, x, h))) = (moving[v], proposal) {
+            mesh.plane[v] = q;
+            mesh.position[v] = x;
+            if h != u32::MAX {
+                mesh.hint[v] = h;
+            }
+            moved += 1;
+        }
+    }
+    moved
+}
+
+/// Whether face `f` folds with its `moving` corners at their `proposals`: its surface
+/// triangle loses its area or turns its normal by 90 degrees or more, or (all corners planar)
+/// its planar triangle loses its orientation in the chart or all but a millionth of its area.
+fn folds(mesh: &Shaping, f: &[u32; 3], proposals: &[Proposal], moving: &[bool]) -> bool {
+    let at = |w: u32| proposals[w as usize].filter(|_| moving[w as usize]);
+    let (old_x, new_x) = (f.map(|w| mesh.position[w as usize]), f.map(|w| at(w).map_or(mesh.position[w as usize], |p| p.1)));
+    let n0 = cross(sub(old_x[1], old_x[0]), sub(old_x[2], old_x[0]));
+    let n1 = cross(sub(new_x[1], new_x[0]), sub(new_x[2], new_x[0]));
+    if !(triangle_area(new_x[0], new_x[1], new_x[2]) > 0.0 && dot(n0, n1) > 0.0) {
+        return true;
+    }
+    if !f.iter().all(|&w| mesh.has_plane[w as usize]) {
+        return false;
+    }
+    let (old_p, new_p) = (f.map(|w| mesh.plane[w as usize]), f.map(|w| at(w).map_or(mesh.plane[w as usize], |p| p.0)));
+    let floor = 1e-6 * mesh.chart.signed_area(old_p[0], old_p[1], old_p[2]).abs();
+    !mesh.oriented(new_p[0], new_p[1], new_p[2], floor)
 }
 
 #[cfg(test)]
@@ -206,15 +252,45 @@ mod tests {
         let incidence = mesh.incidence();
         let before = area_error(&mesh);
         let ln_mean = ln_mean_area(&mesh);
-        let u = global_area_step(&mesh, &incidence, &|_| ln_mean, SMOOTHNESS, &mut SpdSolver::new()).expect("solvable");
+        let u = global_area_step(&mesh, &incidence, None, &|_| ln_mean, SMOOTHNESS, &mut SpdSolver::new()).expect("solvable");
         for v in 0..u.len() {
             if mesh.role[v] != Role::Free {
                 assert_eq!(u[v], [0.0, 0.0]);
             }
         }
-        apply(&mut mesh, &u, 1.0);
+        let moved = apply_step(&mut mesh, &u, &flat_place);
+        assert_eq!(moved, u.iter().filter(|d| **d != [0.0, 0.0]).count(), "every vertex moves");
         let after = area_error(&mesh);
         assert!(after < 0.1 * before, "area error {before} -> {after}");
+    }
+
+    /// The lift of the flat grids: the planar point itself, no hint.
+    fn flat_place(q: [f64; 2], _hint: u32) -> Option<([f64; 3], u32)> {
+        Some(([q[0], q[1], 0.0], u32::MAX))
+    }
+
+    /// A step that would fold faces: the vertices of the folding faces stay, the others move,
+    /// and no face ends folded.
+    #[test]
+    fn a_step_that_folds_keeps_the_folding_faces_corners_in_place() {
+        let k = 8;
+        let mut mesh = bumped_grid(k, 0.0);
+        let at = |i: usize, j: usize| j * (k + 1) + i;
+        let mut u = vec![[0.0; 2]; mesh.plane.len()];
+        // Vertex (2, 2) jumps three cells: its faces fold. Vertex (6, 6) moves a tenth of one.
+        u[at(2, 2)] = [3.0 / k as f64, 0.0];
+        u[at(6, 6)] = [0.1 / k as f64, 0.05 / k as f64];
+        u[at(3, 2)] = [0.01 / k as f64, 0.0];
+        let before = mesh.plane.clone();
+        let moved = apply_step(&mut mesh, &u, &flat_place);
+        assert_eq!(moved, 1, "only the far vertex moves");
+        assert_eq!(mesh.plane[at(2, 2)], before[at(2, 2)]);
+        assert_eq!(mesh.plane[at(3, 2)], before[at(3, 2)], "a neighbour of the folding vertex stays");
+        assert_ne!(mesh.plane[at(6, 6)], before[at(6, 6)]);
+        for f in &mesh.faces {
+            let p = f.map(|v| mesh.plane[v as usize]);
+            assert!(signed_area_2d(p[0], p[1], p[2]) > 0.0, "face {f:?} folded");
+        }
     }
 
     /// The step's linear model: the change of each face's log area for a small multiple of
@@ -223,7 +299,7 @@ mod tests {
     fn the_linear_model_matches_a_small_step() {
         let mesh = bumped_grid(6, 0.1);
         let incidence = mesh.incidence();
-        let u = global_area_step(&mesh, &incidence, &|_| -3.0, SMOOTHNESS, &mut SpdSolver::new()).expect("solvable");
+        let u = global_area_step(&mesh, &incidence, None, &|_| -3.0, SMOOTHNESS, &mut SpdSolver::new()).expect("solvable");
         let ln_area = |m: &Shaping, f: [u32; 3]| { let p = f.map(|v| m.plane[v as usize]); signed_area_2d(p[0], p[1], p[2]).ln() };
         let h = 1e-6;
         let mut moved = bumped_grid(6, 0.1);

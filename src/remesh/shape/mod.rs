@@ -73,11 +73,10 @@ pub struct ShapeOptions {
     /// the mean smallest angle on 10 of the 11 shared meshes, and the rebalancing halved the
     /// hand's `d_face_relative` (docs/method.md, "Remesh shape").
     pub resample: bool,
-    /// Weight `mu` of the shape term against the area term in the polish. Default 0.1: with
-    /// the polish as the last area step, 0.1 gave both lower d_face_rel and a higher mean
-    /// smallest angle than 0.3 on the shared meshes (docs/method.md, "Remesh shape"). A sized
-    /// remesh weighs the shape term ten times this (its areas are covered areas,
-    /// docs/method.md section 19).
+    /// Weight `mu` of the shape term against the area term in the polish. Default
+    /// [`DEFAULT_SHAPE_WEIGHT`]. A sized remesh weighs the shape term
+    /// [`COVERED_SHAPE_WEIGHT`] at the default, in proportion to this otherwise (its areas are
+    /// covered areas, docs/method.md section 19).
     pub shape_weight: f64,
     /// Sweeps of the pure-area equalization after the shape stage. Default 0: they lowered the
     /// mean smallest angle by 2-3 degrees for the area the polish gains as well.
@@ -99,7 +98,7 @@ pub struct ShapeOptions {
 
 impl Default for ShapeOptions {
     fn default() -> Self {
-        Self { relax_iterations: 40, polish_iterations: 85, area_steps: 6, resample: true, shape_weight: 0.1, area_sweeps: 0, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform, keep_creases: false }
+        Self { relax_iterations: 40, polish_iterations: 85, area_steps: 6, resample: true, shape_weight: DEFAULT_SHAPE_WEIGHT, area_sweeps: 0, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform, keep_creases: false }
     }
 }
 
@@ -222,12 +221,19 @@ pub struct ShapeReport {
     pub uncross: UncrossReport,
 }
 
-/// The factor on [`ShapeOptions::shape_weight`] when the faces are measured by the surface
-/// they cover (a sized remesh): covered areas and chord shapes pull apart where the remesh
-/// bridges a fold, and at the uniform weight the sized remeshes' mean smallest angle fell to
-/// 45.8-46.8 degrees on six shared meshes; at ten times it is 46.8-48.5 there with the same
-/// surface distances (docs/method.md section 19).
-const COVERED_SHAPE_FACTOR: f64 = 10.0;
+/// The default [`ShapeOptions::shape_weight`]: 0.1 gave both lower `d_face_relative` and a
+/// higher mean smallest angle than 0.3 on the shared meshes; since the global area steps
+/// follow the surface's areas through the inverse map's differential and move every vertex
+/// at once, the areas come out more equal and 0.13 buys a higher mean smallest angle on 9 of
+/// the 11 (docs/method.md section 18, "Global area steps through the differential").
+pub const DEFAULT_SHAPE_WEIGHT: f64 = 0.13;
+
+/// The shape weight of a sized remesh (faces measured by the surface they cover) at the
+/// default [`ShapeOptions::shape_weight`], scaled with it: covered areas and chord shapes pull
+/// apart where the remesh bridges a fold, and at the uniform weight of 0.1 the sized
+/// remeshes' mean smallest angle fell to 45.8-46.8 degrees on six shared meshes; at 1 it is
+/// 46.8-48.5 there with the same surface distances (docs/method.md section 19).
+pub const COVERED_SHAPE_WEIGHT: f64 = 1.0;
 
 /// The edge length of equilateral faces of `mesh`'s mean area.
 fn target_length(mesh: &Shaping) -> f64 {
@@ -340,7 +346,7 @@ pub(crate) fn optimize_shape(
     // what sizing is for.
     let by_covered = options.sizing != super::sizing::Sizing::Uniform;
     let on_cap = input.lift.inverse().map().report.z_star.is_some();
-    let (lloyd, mu) = (options.relax_iterations, if by_covered { COVERED_SHAPE_FACTOR * options.shape_weight } else { options.shape_weight });
+    let (lloyd, mu) = (options.relax_iterations, if by_covered { COVERED_SHAPE_WEIGHT * options.shape_weight / DEFAULT_SHAPE_WEIGHT } else { options.shape_weight });
     // The target edge length: equilateral faces of the pulled-back mesh's mean area.
     let target_len = target_length(&mesh);
     let (faces0, mut len_factor) = (mesh.faces.len(), 1.0f64);
@@ -417,10 +423,16 @@ pub(crate) fn optimize_shape(
         // (global_area): the smooth part of the area error in one solve.
         let polish_it = it.checked_sub(lloyd);
         let global = match polish_it {
-            Some(k) if !by_covered && k % global_area::AREA_STEP_SPACING == 0 && k / global_area::AREA_STEP_SPACING < options.area_steps => global_area::global_area_step(&mesh, &incidence, &target, global_area::SMOOTHNESS, &mut area_solver),
+            Some(k) if !by_covered && k % global_area::AREA_STEP_SPACING == 0 && k / global_area::AREA_STEP_SPACING < options.area_steps => global_area::global_area_step(&mesh, &incidence, Some(input.lift), &target, global_area::SMOOTHNESS, &mut area_solver),
             _ => None,
         };
         report.area_steps += usize::from(global.is_some());
+        // A global step moves every vertex at once, as it was solved (`global_area::apply_step`).
+        if let Some(u) = global {
+            report.moves += global_area::apply_step(&mut mesh, &u, &|q, hint| input.lift.lift(q, hint));
+            report.iterations += 1;
+            continue;
+        }
         for class in &classes {
             let moves: Vec<(u32, Option<Move>)> = class
                 .par_iter()
@@ -428,11 +440,7 @@ pub(crate) fn optimize_shape(
                     let v_ = v as usize;
                     let step = match (mesh.role[v_], input.track) {
                         (Role::Free, _) if it < lloyd => smooth::relax_vertex(&mesh, &incidence, v_, input.lift, &weight, covered.as_ref()).map(|(q, x, h)| (q, x, h, 0.0)),
-                        (Role::Free, _) => match &global {
-                            Some(u) => global_area::move_vertex(&mesh, &incidence, v_, input.lift, u[v_]),
-                            None => polish::polish_vertex(&mesh, &incidence, v_, input.lift, &target, mu, covered.as_ref()),
-                        }
-                        .map(|(q, x, h)| (q, x, h, 0.0)),
+                        (Role::Free, _) => polish::polish_vertex(&mesh, &incidence, v_, input.lift, &target, mu, covered.as_ref()).map(|(q, x, h)| (q, x, h, 0.0)),
                         (Role::Boundary, Some(track)) => boundary::slide_vertex(&mesh, &incidence, track, &arc, v_, prev[v_] as usize, next[v_] as usize).map(|(q, x, s)| (q, x, u32::MAX, s)),
                         _ => None,
                     };

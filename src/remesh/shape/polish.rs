@@ -11,7 +11,7 @@
 use super::covered::Covered;
 use super::smooth::{ring_faces_same_side, ring_jacobian, ring_valid_in_plane};
 use super::state::{Incidence, Shaping, SurfaceLift};
-use crate::mesh::geometry::{cross, dot, norm, sub};
+use crate::mesh::geometry::{cross, dot, ln_triangle_area_gradient, norm, sub};
 use nalgebra::{Matrix2, Vector2, Vector3};
 
 /// Halvings of a step before the vertex stays.
@@ -24,12 +24,10 @@ const EQUILATERAL: f64 = 6.928203230275509;
 /// gradients with respect to `x`. `None` for a face without area.
 fn residuals(x: [f64; 3], a: [f64; 3], b: [f64; 3], ln_target: f64, sqrt_mu: f64) -> Option<([f64; 2], [[f64; 3]; 2])> {
     let r = residual_values(x, a, b, ln_target, sqrt_mu)?;
-    let n = cross(sub(a, x), sub(b, x));
-    let nn = dot(n, n);
     let (ea, eb, ab) = (sub(x, a), sub(x, b), sub(a, b));
     let l = dot(ea, ea) + dot(eb, eb) + dot(ab, ab);
     // grad ln A = n x (b - a) / |n|^2; grad ln L = 2 ((x - a) + (x - b)) / L.
-    let g_area = cross(n, sub(b, a)).map(|c| c / nn);
+    let g_area = ln_triangle_area_gradient(x, a, b);
     let g_len: [f64; 3] = std::array::from_fn(|k| 2.0 * (ea[k] + eb[k]) / l);
     let g_shape: [f64; 3] = std::array::from_fn(|k| sqrt_mu * (g_len[k] - g_area[k]));
     Some((r, [g_area, g_shape]))

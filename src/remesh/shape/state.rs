@@ -41,6 +41,21 @@ impl<'a> SurfaceLift<'a> {
         Some(w[0] * values[f[0] as usize] + w[1] * values[f[1] as usize] + w[2] * values[f[2] as usize])
     }
 
+    /// The differential of the inverse map on face `face` (an index of
+    /// [`InverseMap::top_faces`]): the 3x2 matrix taking a planar displacement inside the face
+    /// to the surface displacement (the map is linear on each input face). `None` for a face
+    /// without planar area.
+    pub(crate) fn jacobian(&self, face: u32) -> Option<nalgebra::Matrix3x2<f64>> {
+        let f = self.inverse.mesh().faces[*self.inverse.top_faces().get(face as usize)?];
+        let plane = &self.inverse.map().plane;
+        let [p0, p1, p2] = f.map(|v| nalgebra::Vector2::from(plane[v as usize]));
+        let [x0, x1, x2] = f.map(|v| nalgebra::Vector3::from(self.inverse.mesh().vertices[v as usize]));
+        let m = nalgebra::Matrix2::from_columns(&[p1 - p0, p2 - p0]);
+        let n = nalgebra::Matrix3x2::from_columns(&[x1 - x0, x2 - x0]);
+        let j = n * m.try_inverse()?;
+        j.iter().all(|x| x.is_finite()).then_some(j)
+    }
+
     /// The inverse map.
     pub(crate) fn inverse(&self) -> &InverseMap<'a> {
         self.inverse
@@ -278,8 +293,37 @@ fn smallest_angle_sin_cos(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> (f64, f64) {
 
 #[cfg(test)]
 mod tests {
-    use super::{smallest_angle, smallest_angle_tan};
+    use super::{smallest_angle, smallest_angle_tan, SurfaceLift};
     use crate::mesh::geometry::triangle_angles;
+
+    /// The inverse map's differential on a face ([`SurfaceLift::jacobian`]) carries a planar
+    /// displacement inside the face to the surface displacement the lift gives (the map is
+    /// linear on each input face), on the left ventricle's map.
+    #[test]
+    fn the_lift_jacobian_is_the_lifts_derivative() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/open_lv_endo_rabbit_chaste.obj.gz");
+        let mesh = crate::read_mesh(std::path::Path::new(path)).expect("the bundled mesh reads");
+        let map = crate::parameterize(&mesh, &crate::ParamOptions::default(), &crate::NoProgress).expect("the bundled mesh maps");
+        let inverse = map.inverse(&mesh).expect("an inverse map");
+        let lift = SurfaceLift::new(&inverse);
+        let mut checked = 0;
+        for face in (0..inverse.top_faces().len()).step_by(37) {
+            let p = mesh.faces[inverse.top_faces()[face]].map(|v| map.plane[v as usize]);
+            let c = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
+            // A tenth of the way towards the first corner: still inside the face.
+            let d = [0.1 * (p[0][0] - c[0]), 0.1 * (p[0][1] - c[1])];
+            let (Some((x0, f0)), Some((x1, f1))) = (lift.lift(c, face as u32), lift.lift([c[0] + d[0], c[1] + d[1]], face as u32)) else { continue };
+            let Some(j) = lift.jacobian(f0) else { continue };
+            if f0 != f1 {
+                continue;
+            }
+            let dx = j * nalgebra::Vector2::from(d);
+            let want = nalgebra::Vector3::from(x1) - nalgebra::Vector3::from(x0);
+            assert!((dx - want).norm() <= 1e-6 * want.norm(), "face {face}: {dx:?} vs {want:?}");
+            checked += 1;
+        }
+        assert!(checked > inverse.top_faces().len() / 37 / 2, "only {checked} faces checked");
+    }
 
     /// The one-atan2 shortcut equals the smallest of the three angles computed in full.
     #[test]
