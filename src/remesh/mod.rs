@@ -281,8 +281,9 @@ pub const MAX_SUBDIVIDED_FACES: usize = 200_000;
 /// the map at least as many faces as the remesh, at most [`MAX_SUBDIVISIONS`] and
 /// [`MAX_SUBDIVIDED_FACES`] faces. The map is piecewise linear on the input's faces; where
 /// it is strongly anisotropic (a long bone's shaft on the cap) a remesh face spanning
-/// several of them is stretched differently at its corners, and flips that the surface
-/// triangles want fold the planar ones (docs/method.md section 25, "Coarse inputs").
+/// several of them is stretched differently at its corners, so the shape stage's linear
+/// models of the map are off and the moves and flips that the surface triangles want fold
+/// the chart's (docs/method.md section 25, "Coarse inputs").
 pub fn subdivision_levels(faces: usize, asked: usize) -> usize {
     let mut levels = 0;
     let mut n = faces.max(1);
