@@ -15,9 +15,10 @@
 //! blocks between neighbours) and solved by sparse Cholesky. The step is applied to every
 //! vertex at once ([`apply_step`]), as it was solved.
 
+use super::smooth::{face_same_side, face_valid_in_chart};
 use super::state::{Incidence, Role, Shaping, SurfaceLift};
 use crate::linalg::SpdSolver;
-use crate::mesh::geometry::{cross, dot, ln_triangle_area_gradient, signed_area_2d, sub, triangle_area};
+use crate::mesh::geometry::{ln_triangle_area_gradient, signed_area_2d, triangle_area};
 use nalgebra::{Matrix3x2, Vector3};
 use rayon::prelude::*;
 use crate::mesh::topology::within_rings;
@@ -191,23 +192,13 @@ pub(crate) fn apply_step(mesh: &mut Shaping, u: &[[f64; 2]], place: &(dyn Fn([f6
     moved
 }
 
-/// Whether face `f` folds with its `moving` corners at their `proposals`: its surface
-/// triangle loses its area or turns its normal by 90 degrees or more, or (all corners planar)
-/// its planar triangle loses its orientation in the chart or all but a millionth of its area.
+/// Whether face `f` folds with its `moving` corners at their `proposals`: on the surface
+/// ([`face_same_side`]) or in the chart ([`face_valid_in_chart`]).
 fn folds(mesh: &Shaping, f: &[u32; 3], proposals: &[Proposal], moving: &[bool]) -> bool {
     let at = |w: u32| proposals[w as usize].filter(|_| moving[w as usize]);
-    let (old_x, new_x) = (f.map(|w| mesh.position[w as usize]), f.map(|w| at(w).map_or(mesh.position[w as usize], |p| p.1)));
-    let n0 = cross(sub(old_x[1], old_x[0]), sub(old_x[2], old_x[0]));
-    let n1 = cross(sub(new_x[1], new_x[0]), sub(new_x[2], new_x[0]));
-    if !(triangle_area(new_x[0], new_x[1], new_x[2]) > 0.0 && dot(n0, n1) > 0.0) {
-        return true;
-    }
-    if !f.iter().all(|&w| mesh.has_plane[w as usize]) {
-        return false;
-    }
-    let (old_p, new_p) = (f.map(|w| mesh.plane[w as usize]), f.map(|w| at(w).map_or(mesh.plane[w as usize], |p| p.0)));
-    let floor = 1e-6 * mesh.chart.signed_area(old_p[0], old_p[1], old_p[2]).abs();
-    !mesh.oriented(new_p[0], new_p[1], new_p[2], floor)
+    let new_x = f.map(|w| at(w).map_or(mesh.position[w as usize], |p| p.1));
+    let new_p = f.map(|w| at(w).map_or(mesh.plane[w as usize], |p| p.0));
+    !face_same_side(f.map(|w| mesh.position[w as usize]), new_x) || !face_valid_in_chart(mesh, *f, new_p)
 }
 
 #[cfg(test)]

@@ -112,31 +112,40 @@ pub(crate) fn ring_jacobian(mesh: &Shaping, ring: &[u32], v: usize) -> Option<Ma
 }
 
 /// Whether the faces `ring` around `v` keep the planar orientation with `v` at `q`, each
-/// with at least a millionth of its current planar area.
+/// with at least a millionth of its current planar area ([`face_valid_in_chart`]).
 pub(crate) fn ring_valid_in_plane(mesh: &Shaping, ring: &[u32], v: usize, q: [f64; 2]) -> bool {
     ring.iter().all(|&t| {
         let f = mesh.faces[t as usize];
-        if !f.iter().all(|&u| mesh.planar(u)) {
-            // A face at a closed surface's merged bottom ([`super::bottom`]): checked on the
-            // surface only ([`ring_faces_same_side`]).
-            return true;
-        }
-        let p = f.map(|u| if u as usize == v { q } else { mesh.plane[u as usize] });
-        let now = f.map(|u| mesh.plane[u as usize]);
-        let area_now = mesh.chart.signed_area(now[0], now[1], now[2]);
-        mesh.oriented(p[0], p[1], p[2], 1e-6 * area_now.abs())
+        face_valid_in_chart(mesh, f, f.map(|u| if u as usize == v { q } else { mesh.plane[u as usize] }))
     })
 }
 
+/// Whether face `f` with its corners at planar points `p` keeps the mesh's orientation in its
+/// chart with at least a millionth of its current area. A face without a planar point at every
+/// corner (at a closed surface's merged bottom, [`super::bottom`]) passes: it is checked on the
+/// surface only ([`face_same_side`]).
+pub(crate) fn face_valid_in_chart(mesh: &Shaping, f: [u32; 3], p: [[f64; 2]; 3]) -> bool {
+    if !f.iter().all(|&u| mesh.planar(u)) {
+        return true;
+    }
+    let now = f.map(|u| mesh.plane[u as usize]);
+    let area_now = mesh.chart.signed_area(now[0], now[1], now[2]);
+    mesh.oriented(p[0], p[1], p[2], 1e-6 * area_now.abs())
+}
+
 /// Whether every face of `ring` around `v`, with `v` at `x`, has a positive area and turns
-/// its normal by less than 90 degrees (no surface face folds over).
+/// its normal by less than 90 degrees (no surface face folds over; [`face_same_side`]).
 pub(crate) fn ring_faces_same_side(mesh: &Shaping, ring: &[u32], v: usize, x: [f64; 3]) -> bool {
     ring.iter().all(|&t| {
         let f = mesh.faces[t as usize];
-        let old = f.map(|u| mesh.position[u as usize]);
-        let new = f.map(|u| if u as usize == v { x } else { mesh.position[u as usize] });
-        let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
-        let n1 = cross(sub(new[1], new[0]), sub(new[2], new[0]));
-        triangle_area(new[0], new[1], new[2]) > 0.0 && dot(n0, n1) > 0.0
+        face_same_side(f.map(|u| mesh.position[u as usize]), f.map(|u| if u as usize == v { x } else { mesh.position[u as usize] }))
     })
+}
+
+/// Whether a surface face moved from corners `old` to `new` has a positive area and turns its
+/// normal by less than 90 degrees.
+pub(crate) fn face_same_side(old: [[f64; 3]; 3], new: [[f64; 3]; 3]) -> bool {
+    let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
+    let n1 = cross(sub(new[1], new[0]), sub(new[2], new[0]));
+    triangle_area(new[0], new[1], new[2]) > 0.0 && dot(n0, n1) > 0.0
 }
