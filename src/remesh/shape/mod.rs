@@ -35,8 +35,10 @@ pub(crate) mod covered;
 pub(crate) mod crease;
 pub(crate) mod flips;
 pub(crate) mod global_area;
+mod options;
 pub(crate) mod polish;
 pub(crate) mod rebalance;
+mod report;
 pub(crate) mod resample;
 pub(crate) mod sliver;
 pub(crate) mod smooth;
@@ -44,196 +46,12 @@ pub(crate) mod state;
 pub(crate) mod uncross;
 pub(crate) mod worst;
 
+pub use options::{ShapeOptions, COVERED_SHAPE_WEIGHT, DEFAULT_SHAPE_WEIGHT};
+pub use report::{ShapeReport, Start};
 pub use uncross::UncrossReport;
 
 use rayon::prelude::*;
 use state::{Role, Shaping, SurfaceLift};
-
-/// Options of the shape stage.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
-pub struct ShapeOptions {
-    /// Relaxation iterations (valence and angle flips, then a tangential relaxation pass).
-    /// Default 40 (20 left a mean smallest angle about 0.3 degrees lower; docs/method.md,
-    /// "Remesh shape").
-    pub relax_iterations: usize,
-    /// Polish iterations (angle flips, then a joint area and shape step of every vertex): the
-    /// polish also equalizes the areas. Default 85 (100 before the global area steps, which
-    /// with 85 gave lower `d_face_relative` on 10 of the 11 shared meshes at about 6% more
-    /// time; docs/method.md, "Remesh shape").
-    pub polish_iterations: usize,
-    /// Global area steps (`global_area`): Gauss-Newton steps of the area term over all free
-    /// vertices at once, one every 5 polish iterations from the polish's first (0: none).
-    /// Default 6 (docs/method.md, "Remesh shape"). A sized remesh makes none (its areas
-    /// are covered areas, docs/method.md section 19).
-    pub area_steps: usize,
-    /// Split long and collapse short edges in the first half of the relaxation
-    /// (`resample`), where the map is resolved at the remesh's scale, and split and collapse
-    /// by the regions' area error in the second half (`rebalance`). Default on: it raised
-    /// the mean smallest angle on 10 of the 11 shared meshes, and the rebalancing halved the
-    /// hand's `d_face_relative` (docs/method.md, "Remesh shape").
-    pub resample: bool,
-    /// Weight `mu` of the shape term against the area term in the polish. Default
-    /// [`DEFAULT_SHAPE_WEIGHT`]. A sized remesh weighs the shape term
-    /// [`COVERED_SHAPE_WEIGHT`] at the default, in proportion to this otherwise (its areas are
-    /// covered areas, docs/method.md section 19).
-    pub shape_weight: f64,
-    /// Sweeps of the pure-area equalization after the shape stage. Default 0: they lowered the
-    /// mean smallest angle by 2-3 degrees for the area the polish gains as well.
-    pub area_sweeps: usize,
-    /// Largest angle (degrees) between the normals of the two faces of a flipped edge after
-    /// the flip, unless the old pair was bent more: sharper edges are creases and are kept.
-    /// Default 60.
-    pub crease_deg: f64,
-    /// Face sizing (`super::sizing`): uniform (the default) or curvature-adapted. A sized
-    /// remesh measures its faces by the surface they cover rather than by their chords
-    /// (docs/method.md section 19, "Covered areas").
-    pub sizing: super::sizing::Sizing,
-    /// Put vertices on the input's creases (edges bent by more than `crease_deg`, in chains
-    /// of at least 3 edge lengths) and join them by edges (`crease`). Default off: it more
-    /// than halved the lung lobe's sampled distance, but a segmentation remeshed finer than
-    /// its steps takes the steps for creases (docs/method.md, "21. Creases").
-    pub keep_creases: bool,
-}
-
-impl Default for ShapeOptions {
-    fn default() -> Self {
-        Self { relax_iterations: 40, polish_iterations: 85, area_steps: 6, resample: true, shape_weight: DEFAULT_SHAPE_WEIGHT, area_sweeps: 0, crease_deg: 60.0, sizing: super::sizing::Sizing::Uniform, keep_creases: false }
-    }
-}
-
-impl ShapeOptions {
-    /// Set [`ShapeOptions::relax_iterations`].
-    pub fn with_relax_iterations(mut self, n: usize) -> Self {
-        self.relax_iterations = n;
-        self
-    }
-    /// Set [`ShapeOptions::polish_iterations`].
-    pub fn with_polish_iterations(mut self, n: usize) -> Self {
-        self.polish_iterations = n;
-        self
-    }
-    /// Set [`ShapeOptions::area_steps`].
-    pub fn with_area_steps(mut self, n: usize) -> Self {
-        self.area_steps = n;
-        self
-    }
-    /// Set [`ShapeOptions::resample`].
-    pub fn with_resample(mut self, on: bool) -> Self {
-        self.resample = on;
-        self
-    }
-    /// Set [`ShapeOptions::shape_weight`].
-    pub fn with_shape_weight(mut self, mu: f64) -> Self {
-        self.shape_weight = mu;
-        self
-    }
-    /// Set [`ShapeOptions::area_sweeps`].
-    pub fn with_area_sweeps(mut self, n: usize) -> Self {
-        self.area_sweeps = n;
-        self
-    }
-    /// Set [`ShapeOptions::sizing`].
-    pub fn with_sizing(mut self, sizing: super::sizing::Sizing) -> Self {
-        self.sizing = sizing;
-        self
-    }
-    /// Set [`ShapeOptions::keep_creases`].
-    pub fn with_keep_creases(mut self, on: bool) -> Self {
-        self.keep_creases = on;
-        self
-    }
-    /// Set [`ShapeOptions::crease_deg`].
-    pub fn with_crease_deg(mut self, deg: f64) -> Self {
-        self.crease_deg = deg;
-        self
-    }
-}
-
-/// The points the shape stage started from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Start {
-    /// The uniform cap grid pulled back (near-isotropic already, or its remesh better than
-    /// the samples').
-    #[default]
-    Grid,
-    /// An isotropic Poisson-disk sample of the surface (`remesh::sample`, docs/method.md
-    /// section 18).
-    Sample,
-}
-
-/// What the shape stage did.
-#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
-pub struct ShapeReport {
-    /// The points it started from.
-    pub start: Start,
-    /// Starts whose remesh was made (`super::from_cap::from_best_start`: isotropic samples,
-    /// then the cap grid, until one meets the quality bar).
-    pub starts: usize,
-    /// Puncture ends whose map was remeshed: 2 when a closed surface's remesh missed the bar
-    /// and the other end's map was remeshed too (`super::remesh`, the better kept), 1
-    /// otherwise, 0 when the stage did not run.
-    pub ends: usize,
-    /// Iterations made.
-    pub iterations: usize,
-    /// Edge flips over all iterations.
-    pub flips: usize,
-    /// Edge splits over all iterations.
-    pub splits: usize,
-    /// Edge collapses over all iterations.
-    pub collapses: usize,
-    /// Edge splits of the area rebalancing (`rebalance`) in the second half of the
-    /// relaxation, where the faces of a region are too large (not counted in `splits`).
-    pub rebalance_splits: usize,
-    /// Edge collapses of the area rebalancing, where the faces of a region are too small (not
-    /// counted in `collapses`).
-    pub rebalance_collapses: usize,
-    /// Vertices removed at slivers after the last flips and again after the moves for shape
-    /// (`sliver`): free ones of valence 3 or 4, and a closed surface's rim vertices merged
-    /// along short rim edges.
-    pub sliver_removals: usize,
-    /// Vertex moves (interior relaxation and boundary slides) over all iterations.
-    pub moves: usize,
-    /// Moves of the vertices of thin faces after the sliver removals, for shape (`worst`).
-    pub angle_moves: usize,
-    /// Global area steps solved (`global_area`; a step whose system could not be solved is
-    /// skipped and not counted).
-    pub area_steps: usize,
-    /// Boundary vertices put on the input's corners.
-    pub corners_kept: usize,
-    /// Vertices put on the input's creases (`crease`, with [`ShapeOptions::keep_creases`]).
-    pub crease_vertices: usize,
-    /// Pairs of consecutive crease points joined by a remesh edge at the end of the stage.
-    pub crease_edges: usize,
-    /// Pairs of consecutive crease points, joined or not.
-    pub crease_pairs: usize,
-    /// Crease vertices freed at faces still thin after the iterations
-    /// (`crease::RELEASE_BELOW_DEG`).
-    pub crease_released: usize,
-    /// The face sizing used.
-    pub sizing: super::sizing::Sizing,
-    /// The remesh's angles before the stage.
-    pub before: crate::metrics::angles::AngleQuality,
-    /// The remesh's angles after it.
-    pub after: crate::metrics::angles::AngleQuality,
-    /// The removal of self-crossing faces after the area equalization.
-    pub uncross: UncrossReport,
-}
-
-/// The default [`ShapeOptions::shape_weight`]: 0.1 gave both lower `d_face_relative` and a
-/// higher mean smallest angle than 0.3 on the shared meshes; since the global area steps
-/// follow the surface's areas through the inverse map's differential and move every vertex
-/// at once, the areas come out more equal and 0.13 buys a higher mean smallest angle on 9 of
-/// the 11 (docs/method.md section 18, "Global area steps through the differential").
-pub const DEFAULT_SHAPE_WEIGHT: f64 = 0.13;
-
-/// The shape weight of a sized remesh (faces measured by the surface they cover) at the
-/// default [`ShapeOptions::shape_weight`], scaled with it: covered areas and chord shapes pull
-/// apart where the remesh bridges a fold, and at the uniform weight of 0.1 the sized
-/// remeshes' mean smallest angle fell to 45.8-46.8 degrees on six shared meshes; at 1 it is
-/// 46.8-48.5 there with the same surface distances (docs/method.md section 19).
-pub const COVERED_SHAPE_WEIGHT: f64 = 1.0;
 
 /// The edge length of equilateral faces of `mesh`'s mean area.
 fn target_length(mesh: &Shaping) -> f64 {
