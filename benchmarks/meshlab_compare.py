@@ -9,6 +9,8 @@ Methods, all at the same face count (TARGET, 5000 by default):
   paper's pull-back; the default fits the faces to it);
 - capmesh_curv: the same with `--sizing curvature` (smaller faces where the surface is curved);
 - capmesh_creases: the same with `--keep-creases` (vertices and edges along sharp edges);
+- capmesh_surface: the same with `--sizing surface` (equal covered surface areas: a uniform
+  vertex density on the surface);
 - MeshLab (pymeshlab): isotropic explicit remeshing (target edge length; its defaults keep
   edges whose faces meet at more than 30 degrees as features), the same with feature edges off
   (`featuredeg` 180: every edge may be flipped, collapsed and smoothed across), uniform mesh
@@ -88,6 +90,7 @@ METHODS = {
     "capmesh_on_surface": ("capmesh --placement on-surface", "count"),
     "capmesh_curv": ("capmesh --sizing curvature", "count"),
     "capmesh_creases": ("capmesh --keep-creases", "count"),
+    "capmesh_surface": ("capmesh --sizing surface", "count"),
     "isotropic": ("MeshLab isotropic explicit remeshing", "length"),
     "isotropic_nf": ("MeshLab isotropic explicit remeshing, feature edges off", "length"),
     "resampling": ("MeshLab uniform mesh resampling", "length"),
@@ -299,6 +302,7 @@ def initial_param(method, stats, target):
         "capmesh_on_surface": target,
         "capmesh_curv": target,
         "capmesh_creases": target,
+        "capmesh_surface": target,
         "isotropic": edge,
         "isotropic_nf": edge,
         "resampling": edge,
@@ -426,6 +430,8 @@ def main():
                     return run_capmesh(obj, param, out, extra + ["--sizing", "curvature"], args.timeout)
                 if method == "capmesh_creases":
                     return run_capmesh(obj, param, out, extra + ["--keep-creases"], args.timeout)
+                if method == "capmesh_surface":
+                    return run_capmesh(obj, param, out, extra + ["--sizing", "surface"], args.timeout)
                 return worker.run(method, obj, param, out, stats["open"])
 
             # Tuning (untimed), or the cached parameter.
@@ -562,6 +568,7 @@ def write_report(rows, target, repeats, extra, total, suffix):
     for key, label, _, _ in keys:
         w = wins.get(key, {})
         lines.append(f"- {label}: " + (", ".join(f"{k} {v}" for k, v in sorted(w.items(), key=lambda t: -t[1])) or "none"))
+    lines += surface_distance_summary(rows)
     failed = [r for r in rows if not r["metrics"]]
     lines += ["", f"Failed runs: {len(failed)}" + ("" if not failed else " (" + "; ".join(f"{r['mesh']} {r['method']}" for r in failed) + ")."), ""]
     try:
@@ -604,6 +611,44 @@ def write_report(rows, target, repeats, extra, total, suffix):
             lines += ["", fh.read().rstrip()]
     with open(os.path.join(RESULTS, f"meshlab_compare{suffix}.md"), "w") as fh:
         fh.write("\n".join(lines) + "\n")
+
+
+def surface_distance_summary(rows):
+    """Each capmesh variant's sampled surface distance over the best of the other methods on
+    each mesh (issue 26: within 10% everywhere, the lowest on at least 5 of 11; with
+    `--sizing curvature` the lowest on 9), and its face-area spread."""
+    meshes = list(dict.fromkeys(r["mesh"] for r in rows))
+    variants = [m for m in dict.fromkeys(r["method"] for r in rows) if m.startswith("capmesh")]
+    key = "d_surface_sampled_relative"
+
+    def value(mesh, method):
+        r = next((r for r in rows if r["mesh"] == mesh and r["method"] == method and r["metrics"]), None)
+        return None if r is None else r["metrics"].get(key)
+
+    others = {}
+    for mesh in meshes:
+        vals = [(value(mesh, m), m) for m in dict.fromkeys(r["method"] for r in rows) if not m.startswith("capmesh")]
+        vals = [(v, m) for v, m in vals if v is not None]
+        if vals:
+            others[mesh] = min(vals)
+    if not variants or not others:
+        return []
+    lines = ["", "## Surface distance against the best other method", "",
+             "Each capmesh variant's d_surf over the lowest d_surf of the non-capmesh methods on the mesh (below 1: capmesh lower; that method in brackets).", ""]
+    lines += ["| variant | " + " | ".join(meshes) + " | lowest | within 10% |", "|---|" + "---:|" * (len(meshes) + 2)]
+    for v in variants:
+        cells, lowest, within = [], 0, 0
+        for mesh in meshes:
+            d = value(mesh, v)
+            if d is None or mesh not in others:
+                cells.append("")
+                continue
+            ratio = d / others[mesh][0]
+            lowest += ratio < 1.0
+            within += ratio <= 1.1
+            cells.append(f"{ratio:.2f} ({others[mesh][1]})")
+        lines.append(f"| {METHODS[v][0]} | " + " | ".join(cells) + f" | {lowest} of {len(cells)} | {within} of {len(cells)} |")
+    return lines
 
 
 if __name__ == "__main__":

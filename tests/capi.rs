@@ -437,7 +437,7 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     assert_eq!(report["optimize"], "shape+area", "{}", report["optimize"]);
     assert_eq!(report["fit"]["fitted"], true, "{}", report["fit"]);
     assert_eq!(report["shape"]["iterations"].as_u64(), Some((shape.relax_iterations + shape.polish_iterations) as u64), "{}", report["shape"]);
-    assert_eq!((o.sizing_strength, &report["shape"]["sizing"]), (0.0, &serde_json::json!("uniform")));
+    assert_eq!((o.sizing, o.sizing_strength, &report["shape"]["sizing"]), (CAPMESH_V1_SIZING_UNIFORM, 3.0, &serde_json::json!("uniform")));
     let shaped_share = share_below_30(&shaped);
 
     o.optimize = CAPMESH_V1_OPTIMIZE_AREA;
@@ -454,8 +454,15 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     o.polish_iterations = 0;
     let (_, report) = run(&o);
     assert_eq!(report["shape"]["iterations"].as_u64(), Some(0), "{}", report["shape"]);
-    // The curvature sizing is passed through (its effect: tests/remesh_sizing.rs).
+    // The sizings are passed through (their effect: tests/remesh_sizing.rs); the curvature's
+    // strength only with it.
     o.sizing_strength = 2.5;
+    let (_, report) = run(&o);
+    assert_eq!(report["shape"]["sizing"], "uniform", "{}", report["shape"]);
+    o.sizing = CAPMESH_V1_SIZING_SURFACE;
+    let (_, report) = run(&o);
+    assert_eq!(report["shape"]["sizing"], "surface", "{}", report["shape"]);
+    o.sizing = CAPMESH_V1_SIZING_CURVATURE;
     let (_, report) = run(&o);
     assert_eq!(report["shape"]["sizing"], "curvature=2.5", "{}", report["shape"]);
     // The placement is passed through: on the surface, no fit.
@@ -509,8 +516,13 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     bad.subdivide_coarse = 2;
     refused(&bad, "subdivide_coarse = 2");
     let mut bad = capmesh_v1_remesh_options_default();
+    bad.sizing = 3;
+    refused(&bad, "sizing = 3");
+    bad.sizing = CAPMESH_V1_SIZING_CURVATURE;
     bad.sizing_strength = -1.0;
     refused(&bad, "sizing_strength = -1");
+    bad.sizing_strength = 0.0;
+    refused(&bad, "sizing_strength = 0");
     bad.sizing_strength = f64::NAN;
     refused(&bad, "sizing_strength");
 }

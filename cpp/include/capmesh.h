@@ -143,6 +143,24 @@
 #define CAPMESH_V1_PLACEMENT_ON_SURFACE 1
 
 /**
+ * `capmesh_v1_remesh_options.sizing`: equal face areas (default; the CLI's `--sizing
+ * uniform`).
+ */
+#define CAPMESH_V1_SIZING_UNIFORM 0
+
+/**
+ * `capmesh_v1_remesh_options.sizing`: equal surface areas covered through the map, a uniform
+ * vertex density on the surface (`--sizing surface`).
+ */
+#define CAPMESH_V1_SIZING_SURFACE 1
+
+/**
+ * `capmesh_v1_remesh_options.sizing`: smaller faces where the surface is curved, of strength
+ * `sizing_strength` (`--sizing curvature=S`).
+ */
+#define CAPMESH_V1_SIZING_CURVATURE 2
+
+/**
  * Progress stage: checking the input mesh.
  */
 #define CAPMESH_V1_STAGE_VALIDATE 0
@@ -357,7 +375,7 @@ typedef struct capmesh_v1_remesh_options {
   uint32_t polish_iterations;
   /**
    * Weight of the shape term against the area term in the polish, finite and >= 0 (larger:
-   * better angles, less equal areas). Default 0.1.
+   * better angles, less equal areas). Default 0.13.
    */
   double shape_weight;
   /**
@@ -366,9 +384,13 @@ typedef struct capmesh_v1_remesh_options {
    */
   int32_t resample;
   /**
-   * Face sizing of the shape stage: 0 = uniform, equal areas (default, the paper's goal);
-   * a finite strength > 0 = smaller faces where the surface is curved (the CLI's
-   * `--sizing curvature=S`; `--sizing curvature` is 3).
+   * One of `CAPMESH_V1_SIZING_*`: how the shape stage sizes the faces. Default uniform (0),
+   * equal areas (the paper's goal).
+   */
+  int32_t sizing;
+  /**
+   * Strength of `CAPMESH_V1_SIZING_CURVATURE`, finite and > 0 (the CLI's
+   * `--sizing curvature=S`); ignored by the other sizings. Default 3.
    */
   double sizing_strength;
   /**

@@ -178,9 +178,16 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     resample = on ? 1 : 0;
     return *this;
   }
-  /// Face sizing: 0 = uniform, equal areas (the default); a strength > 0 = smaller faces
-  /// where the surface is curved (the CLI's `--sizing curvature=S`).
-  RemeshOptions &with_sizing_strength(double strength) {
+  /// Equal surface areas covered through the map: a uniform vertex density on the surface,
+  /// closer to folded inputs, less equal chord areas (the CLI's `--sizing surface`).
+  RemeshOptions &with_surface_sizing() {
+    sizing = CAPMESH_V1_SIZING_SURFACE;
+    return *this;
+  }
+  /// Smaller faces where the surface is curved, of strength > 0 (the CLI's
+  /// `--sizing curvature=S`; 3 for `--sizing curvature`).
+  RemeshOptions &with_curvature_sizing(double strength = 3.0) {
+    sizing = CAPMESH_V1_SIZING_CURVATURE;
     sizing_strength = strength;
     return *this;
   }

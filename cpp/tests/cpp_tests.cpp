@@ -217,7 +217,10 @@ void optimize_options() {
   CHECK(shaped.report_json.find("\"optimize\":\"shape+area\"") != std::string::npos);
   auto area = capmesh::openmesh::remesh(input, capmesh::RemeshOptions::uniform(1000).with_optimize(capmesh::Optimize::Area));
   CHECK(area.report_json.find("\"optimize\":\"area\"") != std::string::npos);
-  auto few = capmesh::openmesh::remesh(input, capmesh::RemeshOptions::uniform(1000).with_shape_iterations(2, 3));
+  CHECK(o.sizing == CAPMESH_V1_SIZING_UNIFORM && o.sizing_strength == 3.0);
+  CHECK(capmesh::RemeshOptions::uniform(1000).with_curvature_sizing(2.0).sizing == CAPMESH_V1_SIZING_CURVATURE);
+  auto few = capmesh::openmesh::remesh(input, capmesh::RemeshOptions::uniform(1000).with_shape_iterations(2, 3).with_surface_sizing());
+  CHECK(few.report_json.find("\"sizing\":\"surface\"") != std::string::npos);
   const auto shape_at = few.report_json.find("\"shape\":{");
   CHECK(shape_at != std::string::npos);
   if (shape_at != std::string::npos) CHECK(json_number(few.report_json.substr(shape_at), "iterations") == 5.0);

@@ -15,6 +15,8 @@ const QStringList domainNames = {
 const QStringList gridNames = {"Uniform", "Latitude-longitude"};
 // In the order of CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA, _AREA, _NONE (0, 1, 2).
 const QStringList optimizeNames = {"shape+area", "area", "none"};
+// In the order of CAPMESH_V1_SIZING_*.
+const QStringList sizingNames = {"uniform", "surface", "curvature"};
 // Index i: basis and boundary of capmesh_v1_harmonics_options (0: AH; 1..3: SCHA with
 // boundary i - 1).
 const QStringList basisNames = {
@@ -114,11 +116,17 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 		"Resample", d.resample != 0, "Split and collapse edges (shape+area)",
 		"Also split long and collapse short edges in the shape stage: better angles on smooth "
 		"surfaces, slivers where thin parts fold at the remesh's scale."));
+	list.addParam(RichEnum(
+		"Sizing", d.sizing, sizingNames, "Sizing (shape+area)",
+		"How the faces are sized. uniform (default): equal areas. surface: equal surface areas "
+		"covered through the map, a uniform vertex density on the surface: closer to an input "
+		"folded finer than the faces (a cortex's sulci, a thin edge), less equal face areas. "
+		"curvature: smaller faces where the surface is curved ('Curvature strength'), for a "
+		"smaller distance to the input at the same face count."));
 	list.addParam(RichFloat(
-		"SizingStrength", Scalarm(d.sizing_strength), "Curvature sizing (shape+area)",
-		"0: uniform, equal areas (the default). A strength > 0: smaller faces where the surface "
-		"is curved, for a smaller distance to the input at the same face count (3 is the "
-		"command line's --sizing curvature)."));
+		"SizingStrength", Scalarm(d.sizing_strength), "Curvature strength (curvature sizing)",
+		"Strength > 0 of the curvature sizing: the density is 1 + S k L (3 is the command "
+		"line's --sizing curvature)."));
 	list.addParam(RichBool(
 		"KeepCreases", d.keep_creases != 0, "Keep creases (shape+area)",
 		"Put vertices on the input's sharp edges (faces bent by more than 60 degrees, also at the "
@@ -159,6 +167,9 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 	o.area_steps = nonNegative(list, "AreaSteps");
 	o.shape_weight = double(list.getFloat("ShapeWeight"));
 	o.resample = list.getBool("Resample") ? 1 : 0;
+	o.sizing = int32_t(list.getEnum("Sizing"));
+	if (o.sizing < 0 || o.sizing >= sizingNames.size())
+		throw MLException(QString("Capmesh: unknown sizing %1.").arg(o.sizing));
 	o.sizing_strength = double(list.getFloat("SizingStrength"));
 	o.keep_creases = list.getBool("KeepCreases") ? 1 : 0;
 	o.placement = list.getBool("VerticesOnSurface") ? CAPMESH_V1_PLACEMENT_ON_SURFACE : CAPMESH_V1_PLACEMENT_FITTED;

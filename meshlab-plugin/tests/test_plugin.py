@@ -52,7 +52,8 @@ def test_filters_are_registered_with_capmesh_defaults(plugin, mesh_file):
     assert remesh["optimize"] == 0  # shape+area
     assert remesh["relaxiterations"] == 40 and remesh["polishiterations"] == 85 and remesh["areasteps"] == 6
     assert remesh["shapeweight"] == pytest.approx(0.13) and remesh["resample"]
-    assert remesh["sizingstrength"] == 0.0 and not remesh["keepcreases"] and not remesh["verticesonsurface"]
+    assert remesh["sizing"] == 0 and remesh["sizingstrength"] == 3.0  # uniform; curvature's strength
+    assert not remesh["keepcreases"] and not remesh["verticesonsurface"]
     assert not remesh["fillholes"] and remesh["subdividecoarse"]
     assert ms.filter_parameter_values("capmesh_harmonics_reconstruction")["order"] > 0
 
@@ -285,8 +286,8 @@ def test_bad_parameter_is_refused(plugin, mesh_file):
     assert r["raised"] and "PolishIterations must be a non-negative integer" in r["message"]
     r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", shapeweight=-1.0)
     assert r["raised"] and "(invalid argument): shape_weight = -1 is negative" in r["message"]
-    r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", sizingstrength=-2.0)
-    assert r["raised"] and "sizing_strength = -2 is negative" in r["message"]
+    r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", sizing="curvature", sizingstrength=-2.0)
+    assert r["raised"] and "sizing_strength = -2 is not > 0" in r["message"]
     assert r["meshes"] == 1
 
 

@@ -55,6 +55,12 @@ def test_remesh_equals_cli(cli, tmp_path):
     cv, cf, crep = capmesh.remesh(v, f, faces_target=1000, sizing="curvature=2")
     assert crep["shape"]["sizing"] == curved["shape"]["sizing"] == "curvature=2"
     assert crep["quality"]["d_face"] == curved["d_face"] != expected["d_face"]
+    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet", "--sizing", "surface")
+    assert done.returncode == 0, done.stderr
+    by_surface = json.loads(report.read_text())
+    _, _, srep = capmesh.remesh(v, f, faces_target=1000, sizing="surface")
+    assert srep["shape"]["sizing"] == by_surface["shape"]["sizing"] == "surface"
+    assert srep["quality"]["d_face"] == by_surface["d_face"] != expected["d_face"]
     with pytest.raises(capmesh.InputError, match="unknown sizing"):
         capmesh.remesh(v, f, faces_target=1000, sizing="bumpy")
 

@@ -7,7 +7,7 @@ use crate::param::ParamOptions;
 use crate::refine::Smoothing;
 use crate::flatten::closed::DEFAULT_LAMBDA;
 use crate::remesh::shape::ShapeOptions;
-use crate::remesh::sizing::Sizing;
+use crate::remesh::sizing::{Sizing, DEFAULT_CURVATURE_STRENGTH};
 use crate::remesh::{CapGrid, Holes, Optimize, Placement, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
 
 /// `capmesh_v1_param_options.domain`: the adaptive cap of the paper (default).
@@ -51,6 +51,16 @@ pub const CAPMESH_V1_PLACEMENT_FITTED: i32 = 0;
 /// `capmesh_v1_remesh_options.placement`: the vertices on the input surface, where the inverse
 /// map puts them (the CLI's `--placement on-surface`).
 pub const CAPMESH_V1_PLACEMENT_ON_SURFACE: i32 = 1;
+
+/// `capmesh_v1_remesh_options.sizing`: equal face areas (default; the CLI's `--sizing
+/// uniform`).
+pub const CAPMESH_V1_SIZING_UNIFORM: i32 = 0;
+/// `capmesh_v1_remesh_options.sizing`: equal surface areas covered through the map, a uniform
+/// vertex density on the surface (`--sizing surface`).
+pub const CAPMESH_V1_SIZING_SURFACE: i32 = 1;
+/// `capmesh_v1_remesh_options.sizing`: smaller faces where the surface is curved, of strength
+/// `sizing_strength` (`--sizing curvature=S`).
+pub const CAPMESH_V1_SIZING_CURVATURE: i32 = 2;
 
 /// Parameterization options. Start from `capmesh_v1_param_options_default()`.
 #[allow(non_camel_case_types)]
@@ -108,14 +118,16 @@ pub struct capmesh_v1_remesh_options {
     /// Polish iterations of the shape stage (joint area and shape steps). Default 85.
     pub polish_iterations: u32,
     /// Weight of the shape term against the area term in the polish, finite and >= 0 (larger:
-    /// better angles, less equal areas). Default 0.1.
+    /// better angles, less equal areas). Default 0.13.
     pub shape_weight: f64,
     /// 1 = split long and collapse short edges in the shape stage where the map is resolved
     /// at the remesh's scale (default; better angles); 0 = off (the grid's vertex count).
     pub resample: i32,
-    /// Face sizing of the shape stage: 0 = uniform, equal areas (default, the paper's goal);
-    /// a finite strength > 0 = smaller faces where the surface is curved (the CLI's
-    /// `--sizing curvature=S`; `--sizing curvature` is 3).
+    /// One of `CAPMESH_V1_SIZING_*`: how the shape stage sizes the faces. Default uniform (0),
+    /// equal areas (the paper's goal).
+    pub sizing: i32,
+    /// Strength of `CAPMESH_V1_SIZING_CURVATURE`, finite and > 0 (the CLI's
+    /// `--sizing curvature=S`); ignored by the other sizings. Default 3.
     pub sizing_strength: f64,
     /// Global area steps of the polish (Gauss-Newton steps of the area term over all vertices
     /// at once, one every 5 polish iterations from the first; 0 = none). Default 6.
@@ -167,9 +179,14 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
         area_steps: shape.area_steps as u32,
         shape_weight: shape.shape_weight,
         resample: i32::from(shape.resample),
+        sizing: match shape.sizing {
+            Sizing::Uniform => CAPMESH_V1_SIZING_UNIFORM,
+            Sizing::Surface => CAPMESH_V1_SIZING_SURFACE,
+            Sizing::Curvature { .. } => CAPMESH_V1_SIZING_CURVATURE,
+        },
         sizing_strength: match shape.sizing {
-            Sizing::Uniform => 0.0,
             Sizing::Curvature { strength } => strength,
+            _ => DEFAULT_CURVATURE_STRENGTH,
         },
         keep_creases: i32::from(shape.keep_creases),
         placement: match crate::remesh::Placement::default() {
@@ -286,10 +303,14 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         1 => true,
         v => return Err(Failure::invalid_argument(format!("subdivide_coarse = {v} is not 0 (map the input as it is) or 1 (subdivide a coarse input for its map)"))),
     };
-    let sizing = match finite("sizing_strength", o.sizing_strength)? {
-        0.0 => Sizing::Uniform,
-        s if s > 0.0 => Sizing::Curvature { strength: s },
-        s => return Err(Failure::invalid_argument(format!("sizing_strength = {s} is negative; give 0 (uniform) or a curvature strength > 0"))),
+    let sizing = match o.sizing {
+        CAPMESH_V1_SIZING_UNIFORM => Sizing::Uniform,
+        CAPMESH_V1_SIZING_SURFACE => Sizing::Surface,
+        CAPMESH_V1_SIZING_CURVATURE => match finite("sizing_strength", o.sizing_strength)? {
+            s if s > 0.0 => Sizing::Curvature { strength: s },
+            s => return Err(Failure::invalid_argument(format!("sizing_strength = {s} is not > 0: the curvature sizing needs a positive strength (3 by default)"))),
+        },
+        v => return Err(Failure::invalid_argument(format!("sizing = {v} is not 0 (uniform), 1 (surface) or 2 (curvature)"))),
     };
     let shape = ShapeOptions::default()
         .with_sizing(sizing)

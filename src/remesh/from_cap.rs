@@ -81,7 +81,7 @@ pub(crate) struct FromCap {
 /// not to be tried: the bar of issue 26.
 const GOOD_MEAN_ANGLE_DEG: f64 = 48.0;
 
-/// [`GOOD_MEAN_ANGLE_DEG`] of a sized remesh (`--sizing curvature`), whose faces are
+/// [`GOOD_MEAN_ANGLE_DEG`] of a sized remesh (`--sizing surface` or `curvature`), whose faces are
 /// measured by the surface they cover (`shape::covered`): the shared meshes' sized remeshes
 /// come to 46.4-51.5 degrees, and at the uniform bar the other starts and puncture end,
 /// tried on 8 of 11, took 2-6 times as long for the same figures.
@@ -91,7 +91,7 @@ const SIZED_MEAN_ANGLE_DEG: f64 = 46.0;
 /// [`SIZED_MEAN_ANGLE_DEG`]): no crossing face of its own, no sliver but at the rim, the mean
 /// smallest angle.
 pub(crate) fn meets_bar(r: &FromCap) -> bool {
-    let bar = if r.shape.sizing == super::sizing::Sizing::Uniform { GOOD_MEAN_ANGLE_DEG } else { SIZED_MEAN_ANGLE_DEG };
+    let bar = if r.shape.sizing.by_covered() { SIZED_MEAN_ANGLE_DEG } else { GOOD_MEAN_ANGLE_DEG };
     own_crossings(r) == 0 && slivers(r) <= r.slivers_at_rim && r.mean_min_angle_deg >= bar
 }
 

@@ -332,7 +332,7 @@ fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOp
     let input_crossings = from_cap::InputCrossings::new(work);
     let (mut result, mut points) = remesh_with(work, &map, options, shaped, locate, &input_crossings, progress)?;
     let closed = map.report.kind != SurfaceKind::OpenDisk;
-    let uniform = options.shape.sizing == sizing::Sizing::Uniform;
+    let uniform = !options.shape.sizing.by_covered();
     if shaped && closed && options.param.closed.puncture_end == PunctureEnd::Best && from_cap::end_worth_retrying(&result, uniform) {
         if let Some(other) = other_end(&map) {
             let mut param = options.param.clone();

@@ -1,6 +1,7 @@
-//! Face sizing of the remesh (ours; the paper's remesh is uniform, Sec. 4.2): uniform, or a
-//! density that grows with the surface's smoothed mean curvature, so that curved parts get
-//! smaller faces at the same face count.
+//! Face sizing of the remesh (ours; the paper's remesh is uniform, Sec. 4.2): equal chord
+//! areas, equal covered surface areas (a uniform vertex density on the surface), or a density
+//! that grows with the surface's smoothed mean curvature, so that curved parts get smaller
+//! faces at the same face count.
 //!
 //! A chord of length `h` on a surface of curvature `k` leaves it by about `k h^2 / 8`;
 //! faces of equal error would have `h ~ k^(-1/2)`, a vertex density proportional to `k`.
@@ -23,6 +24,12 @@ pub enum Sizing {
     /// Equal areas: the paper's goal. The default.
     #[default]
     Uniform,
+    /// Equal surface areas covered through the map (`remesh::shape::covered`): a uniform
+    /// vertex density on the surface, as centroidal Voronoi and ACVD remeshers give. A face
+    /// that bridges a fold or a thin edge finer than itself keeps its share of vertices there,
+    /// so the remesh lies closer to the input, and its chord areas are less equal
+    /// (docs/method.md, "Remesh sizing").
+    Surface,
     /// Density `1 + strength * k * L` (see the module docs); `strength` finite and > 0.
     Curvature {
         /// The weight of the curvature term (`DEFAULT_CURVATURE_STRENGTH` on the command
@@ -35,12 +42,21 @@ pub enum Sizing {
 /// The curvature strength of `--sizing curvature` without a value.
 pub const DEFAULT_CURVATURE_STRENGTH: f64 = 3.0;
 
+impl Sizing {
+    /// Whether the remesh's faces are measured by the surface they cover rather than by their
+    /// chords (every sizing but [`Sizing::Uniform`]; `remesh::shape::covered`).
+    pub(crate) fn by_covered(self) -> bool {
+        self != Sizing::Uniform
+    }
+}
+
 impl std::str::FromStr for Sizing {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        let bad = || format!("unknown sizing {s:?}: use uniform (default), curvature or curvature=S with S a number > 0 (e.g. curvature=2)");
+        let bad = || format!("unknown sizing {s:?}: use uniform (default), surface, curvature or curvature=S with S a number > 0 (e.g. curvature=2)");
         match s.split_once('=') {
             None if s == "uniform" => Ok(Sizing::Uniform),
+            None if s == "surface" => Ok(Sizing::Surface),
             None if s == "curvature" => Ok(Sizing::Curvature { strength: DEFAULT_CURVATURE_STRENGTH }),
             Some(("curvature", v)) => match v.parse::<f64>() {
                 Ok(x) if x.is_finite() && x > 0.0 => Ok(Sizing::Curvature { strength: x }),
@@ -55,6 +71,7 @@ impl std::fmt::Display for Sizing {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Sizing::Uniform => write!(f, "uniform"),
+            Sizing::Surface => write!(f, "surface"),
             Sizing::Curvature { strength } => write!(f, "curvature={strength}"),
         }
     }
@@ -126,7 +143,7 @@ pub(crate) fn rms_curvature(mesh: &TriMesh) -> Vec<f64> {
 }
 
 /// The relative vertex density of `sizing` at each input vertex (mean 1 over the surface's
-/// area), for a remesh of `faces` faces; `None` for [`Sizing::Uniform`].
+/// area), for a remesh of `faces` faces; `None` (uniform) but for [`Sizing::Curvature`].
 pub(crate) fn vertex_density(mesh: &TriMesh, sizing: Sizing, faces: usize) -> Option<Vec<f64>> {
     let Sizing::Curvature { strength } = sizing else { return None };
     let n = mesh.n_vertices();
@@ -221,16 +238,20 @@ mod tests {
             assert!((r - 1.0).abs() < 0.01, "{r}");
         }
         assert!(vertex_density(&mesh, Sizing::Uniform, 500).is_none());
+        assert!(vertex_density(&mesh, Sizing::Surface, 500).is_none());
     }
 
     #[test]
     fn sizing_parses_and_prints() {
         assert_eq!("uniform".parse::<Sizing>().unwrap(), Sizing::Uniform);
+        assert_eq!("surface".parse::<Sizing>().unwrap(), Sizing::Surface);
         assert_eq!("curvature".parse::<Sizing>().unwrap(), Sizing::Curvature { strength: DEFAULT_CURVATURE_STRENGTH });
         assert_eq!("curvature=2.5".parse::<Sizing>().unwrap(), Sizing::Curvature { strength: 2.5 });
-        for bad in ["curvature=0", "curvature=-1", "curvature=nan", "curv", ""] {
+        for bad in ["curvature=0", "curvature=-1", "curvature=nan", "curv", "surface=1", ""] {
             assert!(bad.parse::<Sizing>().unwrap_err().contains("curvature=S"), "{bad}");
         }
         assert_eq!(Sizing::Curvature { strength: 2.5 }.to_string(), "curvature=2.5");
+        assert_eq!(Sizing::Surface.to_string(), "surface");
+        assert!(Sizing::Surface.by_covered() && !Sizing::Uniform.by_covered());
     }
 }

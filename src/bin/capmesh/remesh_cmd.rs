@@ -93,9 +93,11 @@ pub struct RemeshArgs {
     /// the faces its chords; with --optimize none, the paper's plain pull-back).
     #[arg(long, default_value = "fitted")]
     pub placement: capmesh::Placement,
-    /// Face sizing: uniform (equal areas, the default) or curvature[=S] (smaller faces
-    /// where the surface is curved, density 1 + S k L at the same face count; S = 3; each
-    /// face's area is the surface it covers, so folds finer than the faces keep vertices).
+    /// Face sizing: uniform (equal areas, the default), surface (equal surface areas covered
+    /// through the map, a uniform vertex density on the surface: folds and thin edges finer
+    /// than the faces keep their vertices, a lower distance to the input, less equal face
+    /// areas) or curvature[=S] (smaller faces where the surface is curved, density 1 + S k L
+    /// at the same face count; S = 3; faces measured as with surface).
     #[arg(long, default_value = "uniform")]
     pub sizing: capmesh::Sizing,
     /// Write figures (PNG, SVG) and an index.md linking them into this directory.

@@ -16,9 +16,9 @@
 //! 3. the last flips, removals of vertices at slivers (`sliver`) and moves of the vertices of
 //!    the faces still thin, weighted for shape (`worst`).
 //!
-//! The areas are the faces' chord areas, or with `--sizing curvature` the surface areas they
-//! cover (`covered`), so that a remesh coarser than the surface's folds keeps its vertices in
-//! them.
+//! The areas are the faces' chord areas, or with `--sizing surface` or `curvature` the surface
+//! areas they cover (`covered`), so that a remesh coarser than the surface's folds keeps its
+//! vertices in them.
 //!
 //! The stage starts from the pulled-back cap grid or, where that lift is stretched, from an
 //! isotropic sample of the surface (`super::sample`, chosen by `super::remesh`).
@@ -162,7 +162,7 @@ pub(crate) fn optimize_shape(
     let crease = options.crease_deg.to_radians();
     // A sized remesh measures its faces by the surface they cover (`covered`): fidelity is
     // what sizing is for.
-    let by_covered = options.sizing != super::sizing::Sizing::Uniform;
+    let by_covered = options.sizing.by_covered();
     let on_cap = input.lift.inverse().map().report.z_star.is_some();
     let (lloyd, mu) = (options.relax_iterations, if by_covered { COVERED_SHAPE_WEIGHT * options.shape_weight / DEFAULT_SHAPE_WEIGHT } else { options.shape_weight });
     // The target edge length: equilateral faces of the pulled-back mesh's mean area.
