@@ -15,16 +15,23 @@ fn load(name: &str) -> TriMesh {
     read_mesh(&common::data(name)).unwrap()
 }
 
+/// The uniform remesh's report, and the remesh and report with `sizing`, of `name` at 5000
+/// faces with the vertices on the surface.
+fn uniform_and_sized(name: &str, sizing: &str) -> (capmesh::remesh::RemeshReport, TriMesh, capmesh::remesh::RemeshReport) {
+    let mesh = load(name);
+    let options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 });
+    let (_, uniform) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let sized_options = options.clone().with_shape(options.shape.with_sizing(sizing.parse().unwrap()));
+    let (sized, rep) = remesh(&mesh, &sized_options, &NoProgress).unwrap();
+    (uniform, sized, rep)
+}
+
 /// `--sizing curvature` on the face (a nose, lips and eyes on a gently curved sheet): at the
 /// same face count the faces shrink where the surface is curved, so their areas spread
 /// (d_face_rel grows) and the sampled distance to the input falls.
 #[test]
 fn curvature_sizing_follows_the_surface_closer() {
-    let mesh = load("open_face_choi.obj.gz");
-    let mut options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 });
-    let (_, uniform) = remesh(&mesh, &options, &NoProgress).unwrap();
-    options.shape = options.shape.with_sizing("curvature".parse().unwrap());
-    let (sized, rep) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let (uniform, sized, rep) = uniform_and_sized("open_face_choi.obj.gz", "curvature");
     let (u, s) = (&uniform.quality, &rep.quality);
     eprintln!("uniform: d_surf {:.3e}, d_face_rel {:.4}; curvature: {:.3e}, {:.4}", u.d_surface_sampled_relative, u.d_face_relative, s.d_surface_sampled_relative, s.d_face_relative);
     assert!(s.d_surface_sampled_relative < 0.85 * u.d_surface_sampled_relative);
@@ -42,11 +49,7 @@ fn curvature_sizing_follows_the_surface_closer() {
 /// diagonal against the uniform 3.27e-3). Its angles stay at the sized remesh's bar.
 #[test]
 fn a_sized_remesh_keeps_its_vertices_in_the_folds() {
-    let mesh = load("closed_brain12k_choi.obj.gz");
-    let options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 });
-    let (_, uniform) = remesh(&mesh, &options, &NoProgress).unwrap();
-    let sized_options = options.clone().with_shape(options.shape.with_sizing("curvature".parse().unwrap()));
-    let (sized, rep) = remesh(&mesh, &sized_options, &NoProgress).unwrap();
+    let (uniform, sized, rep) = uniform_and_sized("closed_brain12k_choi.obj.gz", "curvature");
     let (u, s) = (&uniform.quality, &rep.quality);
     eprintln!("uniform: d_surf {:.3e}; curvature: {:.3e}, mean smallest angle {:.2}", u.d_surface_sampled_relative, s.d_surface_sampled_relative, s.mean_min_angle_deg);
     assert!(s.d_surface_sampled_relative < 0.8 * u.d_surface_sampled_relative, "{:.3e} vs {:.3e}", s.d_surface_sampled_relative, u.d_surface_sampled_relative);
@@ -63,11 +66,7 @@ fn a_sized_remesh_keeps_its_vertices_in_the_folds() {
 /// -> 3.79e-4 of the diagonal), its chord areas are less equal, its angles at the sized bar.
 #[test]
 fn a_surface_sized_remesh_keeps_its_vertices_on_thin_edges() {
-    let mesh = load("closed_lung_rml_chaste_decimated.obj.gz");
-    let options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 });
-    let (_, uniform) = remesh(&mesh, &options, &NoProgress).unwrap();
-    let surface_options = options.clone().with_shape(options.shape.with_sizing("surface".parse().unwrap()));
-    let (sized, rep) = remesh(&mesh, &surface_options, &NoProgress).unwrap();
+    let (uniform, sized, rep) = uniform_and_sized("closed_lung_rml_chaste_decimated.obj.gz", "surface");
     let (u, s) = (&uniform.quality, &rep.quality);
     eprintln!("uniform: d_surf {:.3e}, d_face_rel {:.4}; surface: {:.3e}, {:.4}", u.d_surface_sampled_relative, u.d_face_relative, s.d_surface_sampled_relative, s.d_face_relative);
     assert_eq!(rep.shape.sizing.to_string(), "surface");

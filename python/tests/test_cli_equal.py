@@ -49,18 +49,13 @@ def test_remesh_equals_cli(cli, tmp_path):
     np.testing.assert_allclose(rv, cli_v, rtol=0, atol=1e-12)
 
     # The sizing keyword is the CLI's --sizing.
-    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet", "--sizing", "curvature=2")
-    assert done.returncode == 0, done.stderr
-    curved = json.loads(report.read_text())
-    cv, cf, crep = capmesh.remesh(v, f, faces_target=1000, sizing="curvature=2")
-    assert crep["shape"]["sizing"] == curved["shape"]["sizing"] == "curvature=2"
-    assert crep["quality"]["d_face"] == curved["d_face"] != expected["d_face"]
-    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet", "--sizing", "surface")
-    assert done.returncode == 0, done.stderr
-    by_surface = json.loads(report.read_text())
-    _, _, srep = capmesh.remesh(v, f, faces_target=1000, sizing="surface")
-    assert srep["shape"]["sizing"] == by_surface["shape"]["sizing"] == "surface"
-    assert srep["quality"]["d_face"] == by_surface["d_face"] != expected["d_face"]
+    for sizing in ("curvature=2", "surface"):
+        done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet", "--sizing", sizing)
+        assert done.returncode == 0, done.stderr
+        by_cli = json.loads(report.read_text())
+        _, _, srep = capmesh.remesh(v, f, faces_target=1000, sizing=sizing)
+        assert srep["shape"]["sizing"] == by_cli["shape"]["sizing"] == sizing
+        assert srep["quality"]["d_face"] == by_cli["d_face"] != expected["d_face"]
     with pytest.raises(capmesh.InputError, match="unknown sizing"):
         capmesh.remesh(v, f, faces_target=1000, sizing="bumpy")
 

@@ -336,7 +336,13 @@ pub(crate) fn pull_back_and_optimize(ctx: &Context, cap: TriMesh, progress: &dyn
         let mut state = shape::state::Shaping { faces, plane: planar, position: positions, hint: vec![u32::MAX; has_plane.len()], role, has_plane: has_plane.clone(), orientation, chart: chart(closed) };
         uncross_report = shape::uncross::uncross(&mut state, &lift, options.shape.crease_deg.to_radians());
         if uncross_report.moves + uncross_report.flips + uncross_report.collapses > 0 {
-            shape_report.angle_moves += shape::worst::raise_by_search(&mut state, &lift);
+            let raised = shape::worst::raise_by_search(&mut state, &lift);
+            shape_report.angle_moves += raised;
+            // The moves for angles add no crossing but may mend the slivers the untangling
+            // left: the bar is judged on the faces as they end.
+            if raised > 0 {
+                uncross_report.slivers_after = shape::uncross::sliver_count(&state.position, &state.faces, &state.has_plane);
+            }
         }
         if uncross_report.collapses > 0 {
             // Collapsed vertices have no face left: drop them, renumbering the rest.

@@ -223,6 +223,12 @@ fn is_sliver(position: &[[f64; 3]], has_plane: &[bool], f: [u32; 3]) -> bool {
     f.iter().all(|&u| has_plane[u as usize]) && is_thin(position, f)
 }
 
+/// The faces of `faces` with a planar point at every corner and an angle below
+/// [`MIN_ANGLE`] (the slivers [`uncross`] counts).
+pub(crate) fn sliver_count(position: &[[f64; 3]], faces: &[[u32; 3]], has_plane: &[bool]) -> usize {
+    faces.iter().filter(|&&f| is_sliver(position, has_plane, f)).count()
+}
+
 /// Whether face `f` has an angle below [`MIN_ANGLE`].
 fn is_thin(position: &[[f64; 3]], f: [u32; 3]) -> bool {
     let p = f.map(|u| position[u as usize]);
