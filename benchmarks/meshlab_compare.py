@@ -83,6 +83,14 @@ MESHES = [
     "closed_brain_choi",
 ]
 QUICK_MESHES = ["open_meg_helmet_babysquid_mne", "closed_bunny_npm", "closed_bird_skull_CPallidusA_choi"]
+# capmesh's variants: method key -> the arguments added to `capmesh remesh IN -o OUT --faces N`.
+CAPMESH_VARIANTS = {
+    "capmesh": [],
+    "capmesh_on_surface": ["--placement", "on-surface"],
+    "capmesh_curv": ["--sizing", "curvature"],
+    "capmesh_creases": ["--keep-creases"],
+    "capmesh_surface": ["--sizing", "surface"],
+}
 # Method key -> (label, kind of size parameter: "count" (faces grow with it) or "length"
 # (faces fall as its square)).
 METHODS = {
@@ -297,12 +305,9 @@ def count_faces(path):
 
 def initial_param(method, stats, target):
     edge = edge_for(stats["area"], target)
+    if method in CAPMESH_VARIANTS:
+        return target
     return {
-        "capmesh": target,
-        "capmesh_on_surface": target,
-        "capmesh_curv": target,
-        "capmesh_creases": target,
-        "capmesh_surface": target,
         "isotropic": edge,
         "isotropic_nf": edge,
         "resampling": edge,
@@ -422,16 +427,8 @@ def main():
             stats = mesh_stats(*read_obj(obj))
 
             def run(method, param, out):
-                if method == "capmesh":
-                    return run_capmesh(obj, param, out, extra, args.timeout)
-                if method == "capmesh_on_surface":
-                    return run_capmesh(obj, param, out, extra + ["--placement", "on-surface"], args.timeout)
-                if method == "capmesh_curv":
-                    return run_capmesh(obj, param, out, extra + ["--sizing", "curvature"], args.timeout)
-                if method == "capmesh_creases":
-                    return run_capmesh(obj, param, out, extra + ["--keep-creases"], args.timeout)
-                if method == "capmesh_surface":
-                    return run_capmesh(obj, param, out, extra + ["--sizing", "surface"], args.timeout)
+                if method in CAPMESH_VARIANTS:
+                    return run_capmesh(obj, param, out, extra + CAPMESH_VARIANTS[method], args.timeout)
                 return worker.run(method, obj, param, out, stats["open"])
 
             # Tuning (untimed), or the cached parameter.
@@ -616,7 +613,7 @@ def write_report(rows, target, repeats, extra, total, suffix):
 def surface_distance_summary(rows):
     """Each capmesh variant's sampled surface distance over the best of the other methods on
     each mesh (issue 26: within 10% everywhere, the lowest on at least 5 of 11; with
-    `--sizing curvature` the lowest on 9), and its face-area spread."""
+    `--sizing curvature` the lowest on 9)."""
     meshes = list(dict.fromkeys(r["mesh"] for r in rows))
     variants = [m for m in dict.fromkeys(r["method"] for r in rows) if m.startswith("capmesh")]
     key = "d_surface_sampled_relative"

@@ -7,7 +7,7 @@
 use capmesh::io::read_mesh;
 use capmesh::mesh::{validate, SurfaceKind, TriMesh};
 use capmesh::progress::NoProgress;
-use capmesh::metrics::angles::angle_quality;
+use capmesh::metrics::angles::{angle_quality, face_angle_range};
 use capmesh::remesh::{remesh, CapGrid, Optimize, Placement, RemeshOptions};
 
 mod common;
@@ -21,19 +21,12 @@ fn run(mesh: &TriMesh, optimize: Optimize) -> (TriMesh, capmesh::remesh::RemeshR
     remesh(mesh, &options, &NoProgress).unwrap()
 }
 
-/// The faces of `mesh` with an angle below `deg` degrees (computed here from the corners).
+/// The faces of `mesh` with an angle below `deg` degrees (the metrics' per-face angles).
 fn faces_below(mesh: &TriMesh, deg: f64) -> usize {
-    let angle = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
-        let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-        let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-        let norm = |w: [f64; 3]| (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
-        (dot / (norm(u) * norm(v))).clamp(-1.0, 1.0).acos().to_degrees()
-    };
-    mesh.faces
-        .iter()
-        .filter(|f| {
-            let [a, b, c] = f.map(|u| mesh.vertices[u as usize]);
-            angle(a, b, c).min(angle(b, c, a)).min(angle(c, a, b)) < deg
+    (0..mesh.n_faces())
+        .filter(|&f| {
+            let [a, b, c] = mesh.face_points(f);
+            face_angle_range(a, b, c).0 < deg
         })
         .count()
 }

@@ -36,9 +36,9 @@ pub struct ShapeOptions {
     /// the flip, unless the old pair was bent more: sharper edges are creases and are kept.
     /// Default 60.
     pub crease_deg: f64,
-    /// Face sizing (`remesh::sizing`): uniform (the default) or curvature-adapted. A sized
-    /// remesh measures its faces by the surface they cover rather than by their chords
-    /// (docs/method.md section 19, "Covered areas").
+    /// Face sizing (`remesh::sizing`): uniform (the default), surface or curvature-adapted.
+    /// A sized remesh measures its faces by the surface they cover rather than by their
+    /// chords (docs/method.md section 19, "Covered areas").
     pub sizing: crate::remesh::sizing::Sizing,
     /// Put vertices on the input's creases (edges bent by more than `crease_deg`, in chains
     /// of at least 3 edge lengths) and join them by edges (`crease`). Default off: it more

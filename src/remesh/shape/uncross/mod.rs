@@ -270,7 +270,7 @@ pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift, crease: f64) -> Un
     let cos_crease = crease.cos();
     let crossing = |mesh: &Shaping| self_intersecting_faces(&TriMesh::new(mesh.position.clone(), mesh.faces.clone()));
     let slivers = |mesh: &Shaping| -> Vec<u32> { (0..mesh.faces.len() as u32).filter(|&t| is_sliver(&mesh.position, &mesh.has_plane, mesh.faces[t as usize])).collect() };
-    let (before, slivers_before) = (crossing(mesh).len(), slivers(mesh).len());
+    let (before, slivers_before) = (crossing(mesh).len(), sliver_count(&mesh.position, &mesh.faces, &mesh.has_plane));
     let mut report = UncrossReport { before, after: before, slivers_before, slivers_after: slivers_before, ..Default::default() };
     // Slivers first (a move or flip for an angle may not add a local crossing), then the
     // crossings (a move or flip for a crossing may not leave an angle below the bound).
@@ -315,7 +315,7 @@ pub(crate) fn uncross(mesh: &mut Shaping, lift: &SurfaceLift, crease: f64) -> Un
             }
         }
     }
-    (report.after, report.slivers_after) = (crossing(mesh).len(), slivers(mesh).len());
+    (report.after, report.slivers_after) = (crossing(mesh).len(), sliver_count(&mesh.position, &mesh.faces, &mesh.has_plane));
     report
 }
 
