@@ -403,6 +403,26 @@ fn refinement_equalization_and_puncture_end_options_are_passed_through() {
     }
 }
 
+/// A remesh maps a closed input of many more vertices than it needs (the bunny subdivided
+/// twice, 29k vertices, at 1000 faces) through a copy sized to the remesh (10000 vertices) by
+/// default, and at one level with `coarse_map = 0`, as `capmesh_v1_parameterize` does.
+#[test]
+fn a_remesh_maps_a_fine_closed_input_at_its_own_detail() {
+    let fine = capmesh::mesh::subdivide_midpoint(&read("closed_bunny_npm.obj.gz"), 2);
+    let arrays = Arrays::of(&fine);
+    let o = capmesh_v1_remesh_options { faces: 1000, ..capmesh_v1_remesh_options_default() };
+    assert_eq!(o.coarse_map, 1);
+    for (coarse_map, expected) in [(1, serde_json::json!(capmesh::remesh::remesh_copy_vertices(1000))), (0, serde_json::Value::Null)] {
+        let o = capmesh_v1_remesh_options { coarse_map, ..o };
+        let (mut out, mut raw) = (null_mut(), null_mut());
+        let status = unsafe { capmesh_v1_remesh(&arrays.view(), &o, None, null_mut(), &mut out, &mut raw) };
+        assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());
+        assert_eq!(capmesh::mesh::validate(&take_mesh(out)).unwrap().0, capmesh::mesh::SurfaceKind::ClosedSphere);
+        let report: serde_json::Value = serde_json::from_str(&take_string(raw)).unwrap();
+        assert_eq!(report["param"]["multilevel"]["coarse_vertices"].clone(), expected, "coarse_map {coarse_map}: {}", report["param"]["multilevel"]);
+    }
+}
+
 /// Share of the faces of `mesh` with an angle below 30 degrees.
 fn share_below_30(mesh: &TriMesh) -> f64 {
     capmesh::metrics::angles::angle_quality(mesh).share_below_30
@@ -515,6 +535,9 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     let mut bad = capmesh_v1_remesh_options_default();
     bad.subdivide_coarse = 2;
     refused(&bad, "subdivide_coarse = 2");
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.coarse_map = 2;
+    refused(&bad, "coarse_map = 2");
     let mut bad = capmesh_v1_remesh_options_default();
     bad.sizing = 3;
     refused(&bad, "sizing = 3");

@@ -419,6 +419,14 @@ typedef struct capmesh_v1_remesh_options {
    * is anisotropic); 0 = map it as it is (the CLI's `--no-subdivide`).
    */
   int32_t subdivide_coarse;
+  /**
+   * 1 = map a closed input of many more vertices than the remesh needs through a
+   * decimated copy of twice the remesh's faces in vertices (at least 10000), prolonged to
+   * every vertex (default: faster, the same remesh, a higher mean |d_area|); 0 = map it
+   * as `param.multilevel_above` and `param.coarse_vertices` say, as `capmesh_v1_parameterize`
+   * does (the CLI's `--fine-map`).
+   */
+  int32_t coarse_map;
 } capmesh_v1_remesh_options;
 
 /**

@@ -209,6 +209,13 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     subdivide_coarse = on ? 1 : 0;
     return *this;
   }
+  /// Map a closed input of many more vertices than the remesh needs through a decimated copy
+  /// sized to the remesh (true, the default) or at the detail of the parameterization options
+  /// (false: the CLI's `--fine-map`).
+  RemeshOptions &with_coarse_map(bool on) {
+    coarse_map = on ? 1 : 0;
+    return *this;
+  }
   /// Leave the vertices on the input surface (true) instead of fitting the faces to it in the
   /// least-squares sense (the default; the CLI's `--placement`).
   RemeshOptions &with_vertices_on_surface(bool on) {

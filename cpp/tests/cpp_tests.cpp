@@ -211,6 +211,7 @@ void optimize_options() {
   CHECK(capmesh::RemeshOptions::uniform(1000).with_keep_creases(true).keep_creases == 1);
   CHECK(o.fill_holes == 0 && capmesh::RemeshOptions::uniform(1000).with_fill_holes(true).fill_holes == 1);
   CHECK(o.subdivide_coarse == 1 && capmesh::RemeshOptions::uniform(1000).with_subdivide_coarse(false).subdivide_coarse == 0);
+  CHECK(o.coarse_map == 1 && capmesh::RemeshOptions::uniform(1000).with_coarse_map(false).coarse_map == 0);
   CHECK(o.placement == CAPMESH_V1_PLACEMENT_FITTED);
   CHECK(capmesh::RemeshOptions::uniform(1000).with_vertices_on_surface(true).placement == CAPMESH_V1_PLACEMENT_ON_SURFACE);
   auto shaped = capmesh::openmesh::remesh(input, o);

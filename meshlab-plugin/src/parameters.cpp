@@ -147,6 +147,12 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 		"Map an input with fewer faces than the remesh through a copy with every face split into "
 		"4 (up to 3 times): the same surface, better shaped faces where the map is anisotropic. "
 		"On by default; off maps the input as it is."));
+	list.addParam(RichBool(
+		"CoarseMap", d.coarse_map != 0, "Map a fine input at the remesh's detail",
+		"Map a closed input of many more vertices than the remesh needs through a decimated copy "
+		"of twice the remesh's faces in vertices (at least 10000), prolonged to every vertex: "
+		"faster, the same remesh, a higher mean |d_area|. On by default; off maps it at the "
+		"detail the multilevel options ask for."));
 	addParamOptions(list, d.param);
 }
 
@@ -175,6 +181,7 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 	o.placement = list.getBool("VerticesOnSurface") ? CAPMESH_V1_PLACEMENT_ON_SURFACE : CAPMESH_V1_PLACEMENT_FITTED;
 	o.fill_holes = list.getBool("FillHoles") ? 1 : 0;
 	o.subdivide_coarse = list.getBool("SubdivideCoarse") ? 1 : 0;
+	o.coarse_map = list.getBool("CoarseMap") ? 1 : 0;
 	o.param = readParamOptions(list);
 	return o;
 }

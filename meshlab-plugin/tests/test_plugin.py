@@ -54,7 +54,7 @@ def test_filters_are_registered_with_capmesh_defaults(plugin, mesh_file):
     assert remesh["shapeweight"] == pytest.approx(0.13) and remesh["resample"]
     assert remesh["sizing"] == 0 and remesh["sizingstrength"] == 3.0  # uniform; curvature's strength
     assert not remesh["keepcreases"] and not remesh["verticesonsurface"]
-    assert not remesh["fillholes"] and remesh["subdividecoarse"]
+    assert not remesh["fillholes"] and remesh["subdividecoarse"] and remesh["coarsemap"]
     assert ms.filter_parameter_values("capmesh_harmonics_reconstruction")["order"] > 0
 
 

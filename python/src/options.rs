@@ -25,7 +25,7 @@ pub const MAP_OPTIONS: [&str; 10] = [
     "coarse_vertices",
 ];
 /// The options of `remesh` only.
-pub const REMESH_OPTIONS: [&str; 12] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "area_steps", "shape_weight", "no_resample", "sizing", "keep_creases", "placement", "fill_holes", "no_subdivide"];
+pub const REMESH_OPTIONS: [&str; 13] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "area_steps", "shape_weight", "no_resample", "sizing", "keep_creases", "placement", "fill_holes", "no_subdivide", "fine_map"];
 
 fn parsed<T: std::str::FromStr<Err = String>>(value: &Bound<'_, PyAny>) -> PyResult<T> {
     let text: String = value.str()?.extract()?;
@@ -98,6 +98,7 @@ pub fn remesh(grid: capmesh::CapGrid, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
             "placement" => options.placement = parsed::<capmesh::Placement>(&value)?,
             "fill_holes" => options.holes = if number::<bool>(&name, &value)? { capmesh::Holes::Fill } else { capmesh::Holes::Keep },
             "no_subdivide" => options.subdivide_coarse = !number::<bool>(&name, &value)?,
+            "fine_map" => options.coarse_map = !number::<bool>(&name, &value)?,
             _ => return Err(unknown(&name, &[&MAP_OPTIONS[..], &REMESH_OPTIONS[..]].concat())),
         }
     }

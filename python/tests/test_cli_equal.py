@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import capmesh
-from conftest import CLOSED_MESH, OPEN_MESH
+from conftest import CLOSED_MESH, DATA, OPEN_MESH
 
 
 @pytest.mark.parametrize("path", [OPEN_MESH, CLOSED_MESH], ids=["open", "closed"])
@@ -100,6 +100,16 @@ def test_remesh_equals_cli(cli, tmp_path):
     _, _, prep_fine = capmesh.remesh(v, f, faces_target=5000)
     assert plain["subdivided"] == prep_plain["subdivided"] == 0 and prep_fine["subdivided"] == 1
     assert prep_plain["quality"]["d_face"] == plain["d_face"]
+
+
+def test_fine_map_keyword():
+    """fine_map is the CLI's --fine-map: the 48k brain at 5000 faces is mapped through a copy
+    sized to the remesh by default, at one level with it."""
+    v, f = capmesh.read_mesh(DATA / "closed_brain_choi.obj.gz")
+    _, _, copy = capmesh.remesh(v, f, faces_target=5000)
+    _, _, fine = capmesh.remesh(v, f, faces_target=5000, fine_map=True)
+    assert copy["param"]["multilevel"]["coarse_vertices"] == 10000
+    assert fine["param"]["multilevel"] is None
 
 
 def test_lat_long_grid_and_options():

@@ -145,6 +145,12 @@ pub struct capmesh_v1_remesh_options {
     /// midpoint-subdivided copy (default: the same surface, better shaped faces where the map
     /// is anisotropic); 0 = map it as it is (the CLI's `--no-subdivide`).
     pub subdivide_coarse: i32,
+    /// 1 = map a closed input of many more vertices than the remesh needs through a
+    /// decimated copy of twice the remesh's faces in vertices (at least 10000), prolonged to
+    /// every vertex (default: faster, the same remesh, a higher mean |d_area|); 0 = map it
+    /// as `param.multilevel_above` and `param.coarse_vertices` say, as `capmesh_v1_parameterize`
+    /// does (the CLI's `--fine-map`).
+    pub coarse_map: i32,
 }
 
 /// The defaults documented on each field.
@@ -195,6 +201,7 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
         },
         fill_holes: i32::from(Holes::default() == Holes::Fill),
         subdivide_coarse: i32::from(RemeshOptions::default().subdivide_coarse),
+        coarse_map: i32::from(RemeshOptions::default().coarse_map),
     }
 }
 
@@ -303,6 +310,11 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         1 => true,
         v => return Err(Failure::invalid_argument(format!("subdivide_coarse = {v} is not 0 (map the input as it is) or 1 (subdivide a coarse input for its map)"))),
     };
+    let coarse_map = match o.coarse_map {
+        0 => false,
+        1 => true,
+        v => return Err(Failure::invalid_argument(format!("coarse_map = {v} is not 0 (map at the detail of param's options) or 1 (map a fine closed input through a copy sized to the remesh)"))),
+    };
     let sizing = match o.sizing {
         CAPMESH_V1_SIZING_UNIFORM => Sizing::Uniform,
         CAPMESH_V1_SIZING_SURFACE => Sizing::Surface,
@@ -331,5 +343,6 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         placement,
         holes,
         subdivide_coarse,
+        coarse_map,
     })
 }

@@ -17,7 +17,7 @@ pub use fit::FitReport;
 pub use options::{CapGrid, Holes, Optimize, Pieces, Placement, RemeshOptions, DEFAULT_AREA_EQUALIZATION, MAX_GRID_FACES};
 
 use crate::refine::area_refine::AreaRefineReport;
-use crate::param::{parameterize, ParamReport, PunctureEnd};
+use crate::param::{parameterize, ParamOptions, ParamReport, PunctureEnd};
 use crate::error::Error;
 use crate::cap::{stereographic, CapMap, SurfacePoint};
 use crate::mesh::topology::is_boundary_vertex;
@@ -294,6 +294,34 @@ pub fn subdivision_levels(faces: usize, asked: usize) -> usize {
     levels
 }
 
+/// Vertices of the decimated copy through which a remesh of about `faces` faces maps a fine
+/// closed input ([`RemeshOptions::coarse_map`]): [`REMESH_COPY_PER_FACE`] per remesh face, at
+/// least [`MIN_REMESH_COPY`].
+pub fn remesh_copy_vertices(faces: u64) -> usize {
+    usize::try_from(faces.saturating_mul(REMESH_COPY_PER_FACE as u64)).unwrap_or(usize::MAX).max(MIN_REMESH_COPY)
+}
+
+/// Copy vertices per remesh face (four per remesh vertex): see docs/method.md section 20,
+/// "Maps sized to the remesh".
+pub const REMESH_COPY_PER_FACE: usize = 2;
+
+/// The smallest copy [`remesh_copy_vertices`] asks for.
+pub const MIN_REMESH_COPY: usize = 10_000;
+
+/// The parameterization options of a remesh of about `faces` faces: with
+/// [`RemeshOptions::coarse_map`], a closed input of more than twice
+/// [`remesh_copy_vertices`] maps through a copy of that size (or of the options' own size
+/// when smaller); the options' "never" (`multilevel_above` 0) stands.
+fn map_options(options: &RemeshOptions, faces: u64) -> ParamOptions {
+    let mut param = options.param.clone();
+    if options.coarse_map && param.closed.multilevel_above > 0 {
+        let copy = remesh_copy_vertices(faces);
+        param.closed.coarse_vertices = param.closed.coarse_vertices.min(copy);
+        param.closed.multilevel_above = param.closed.multilevel_above.min(2 * copy);
+    }
+    param
+}
+
 /// Largest share of the input's area in pieces besides the largest that `remesh` drops
 /// (specks of a segmentation); above it several pieces are an error.
 pub const DROPPED_AREA_SHARE: f64 = 0.01;
@@ -327,15 +355,16 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
 /// times: the metrics are against `mesh`, the surface points name its faces.
 #[allow(clippy::too_many_arguments)]
 fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOptions, shaped: bool, progress: &dyn Progress, locate: bool, start: Instant) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
-    let mut map = parameterize(work, &options.param, progress)?;
+    let param = map_options(options, options.grid.approximate_faces());
+    let mut map = parameterize(work, &param, progress)?;
     // The input's crossing faces, found once for both puncture ends if a remesh crosses.
     let input_crossings = from_cap::InputCrossings::new(work);
     let (mut result, mut points) = remesh_with(work, &map, options, shaped, locate, &input_crossings, progress)?;
     let closed = map.report.kind != SurfaceKind::OpenDisk;
     let uniform = !options.shape.sizing.by_covered();
-    if shaped && closed && options.param.closed.puncture_end == PunctureEnd::Best && from_cap::end_worth_retrying(&result, uniform) {
+    if shaped && closed && param.closed.puncture_end == PunctureEnd::Best && from_cap::end_worth_retrying(&result, uniform) {
         if let Some(other) = other_end(&map) {
-            let mut param = options.param.clone();
+            let mut param = param.clone();
             param.closed.puncture_end = other;
             // The other end failing is no reason to fail the remesh already made (unless the
             // user cancelled).

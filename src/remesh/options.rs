@@ -109,6 +109,13 @@ pub struct RemeshOptions {
     /// its map resolved finer than the remesh's faces. Default true (docs/method.md section
     /// 25, "Coarse inputs").
     pub subdivide_coarse: bool,
+    /// Map a closed input of many more vertices than the remesh needs through a decimated
+    /// copy sized to the remesh ([`remesh_copy_vertices`](super::remesh_copy_vertices)) when
+    /// that is smaller than the one the parameterization's own options would make: the map
+    /// is still prolonged to every input vertex and refined there, so the remesh lies on the
+    /// input, at a higher mean |d_area| than `capmesh param`'s. Default true (docs/method.md
+    /// section 20, "Maps sized to the remesh").
+    pub coarse_map: bool,
 }
 
 /// What [`remesh`](super::remesh) does with the holes of an open surface.
@@ -196,6 +203,13 @@ impl RemeshOptions {
         self.subdivide_coarse = on;
         self
     }
+
+    /// Set whether a fine closed input is mapped through a copy sized to the remesh
+    /// ([`RemeshOptions::coarse_map`]).
+    pub fn with_coarse_map(mut self, on: bool) -> Self {
+        self.coarse_map = on;
+        self
+    }
 }
 
 impl Default for RemeshOptions {
@@ -210,6 +224,7 @@ impl Default for RemeshOptions {
             placement: Placement::default(),
             holes: Holes::default(),
             subdivide_coarse: true,
+            coarse_map: true,
         }
     }
 }
