@@ -254,13 +254,21 @@ fn closed_lung_lobe_decimated() {
     assert!(rep.quality.min_angle_deg >= 15.0, "smallest angle {:.1}", rep.quality.min_angle_deg);
 }
 
-/// The bunny subdivided twice (58784 faces, the same surface): the end the radius search
-/// keeps (its search map within 2% of the other's) maps poorly around the puncture and its
-/// remesh misses the bar, so the other end is mapped and remeshed too and the better kept.
+/// The bunny subdivided twice (58784 faces, the same surface), mapped at one level
+/// (`with_coarse_map(false)`): the end the radius search keeps (its search map within 2% of
+/// the other's) maps poorly around the puncture and its remesh misses the bar, so the other
+/// end is mapped and remeshed too and the better kept. By default the 29k vertices are mapped
+/// through a copy of 10000 ([`RemeshOptions::coarse_map`]), whose first end meets the bars.
 #[test]
 fn closed_bunny_subdivided_twice_tries_the_other_end() {
     let mesh = capmesh::mesh::subdivide_midpoint(&load("closed_bunny_npm.obj.gz"), 2);
-    let (out, rep) = run(&mesh, Optimize::ShapeAndArea);
+    let options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 });
+    let (out, rep) = remesh(&mesh, &options.clone().with_coarse_map(false), &NoProgress).unwrap();
+    let (copy_out, copy) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let c = angle_quality(&copy_out);
+    eprintln!("through the copy: ends {}, mean smallest angle {:.2}, smallest {:.1}, d_face_rel {:.4}", copy.shape.ends, c.mean_min_angle_deg, c.min_angle_deg, copy.quality.d_face_relative);
+    assert_eq!(copy.param.multilevel.as_ref().map(|m| m.coarse_vertices), Some(10000));
+    assert!(c.mean_min_angle_deg >= 48.0 && c.min_angle_deg >= 15.0 && copy.quality.d_face_relative <= 0.035 && copy.quality.self_intersecting_faces == 0);
     let a = angle_quality(&out);
     eprintln!("subdivided bunny: ends {}, mean smallest angle {:.2}, smallest {:.1}, d_face_rel {:.4}", rep.shape.ends, a.mean_min_angle_deg, a.min_angle_deg, rep.quality.d_face_relative);
     assert_eq!(rep.shape.ends, 2);
