@@ -24,7 +24,10 @@
 //! and a uniform one (a sphere's) free; the area equalization then runs again towards each
 //! face's area before the fit, each vertex moving in the plane and carrying its offset. The
 //! vertices of faces that cross another face once fitted, where the remesh before the fit had
-//! fewer crossing faces, or whose smallest angle fell below 15 degrees, go back where they were. docs/method.md section 22.
+//! fewer crossing faces, or whose smallest angle fell below 15 degrees, go back where they were.
+//! A remesh sized by covered areas is fitted without the area term and the equalization
+//! ([`FitInput::keep_areas`]): its chord areas are not what it equalizes. docs/method.md
+//! section 22.
 
 use crate::cap::InverseMap;
 use crate::linalg::jacobi_cg2;
@@ -113,6 +116,10 @@ pub(crate) struct FitInput<'a> {
     pub has_plane: &'a [bool],
     pub fixed: &'a [bool],
     pub sweeps: usize,
+    /// Whether the faces' chord areas are kept (the area term and the sweeps): not for a
+    /// remesh sized by covered areas, whose chord areas are not what it equalizes
+    /// (docs/method.md section 22, "Sized remeshes").
+    pub keep_areas: bool,
 }
 
 /// Per face sampled: its unit normal, each sample's weight (area / samples) and signed
@@ -192,7 +199,7 @@ fn normals_and_areas(positions: &[[f64; 3]], faces: &[[u32; 3]]) -> (Vec<[f64; 3
 
 /// The offsets along `normals` that minimise the sampled distances (module docs), and the
 /// conjugate gradients' iterations.
-fn solve_offsets(positions: &[[f64; 3]], faces: &[[u32; 3]], sampled: &[FaceSamples], normals: &[[f64; 3]], vertex_area: &[f64]) -> (Vec<f64>, usize) {
+fn solve_offsets(positions: &[[f64; 3]], faces: &[[u32; 3]], sampled: &[FaceSamples], normals: &[[f64; 3]], vertex_area: &[f64], area_weight: f64) -> (Vec<f64>, usize) {
     let n = normals.len();
     let shrink: Vec<f64> = vertex_area.iter().map(|a| SHRINK * a).collect();
     let mut diagonal = shrink.clone();
@@ -217,6 +224,13 @@ fn solve_offsets(positions: &[[f64; 3]], faces: &[[u32; 3]], sampled: &[FaceSamp
         }
         // The area term: the face's area change, linear in the offsets (gradient of the area
         // with respect to corner j: half the normal crossed with the opposite edge).
+        if area_weight == 0.0 {
+            for j in 0..3 {
+                diagonal[f[j] as usize] += block[j][j];
+            }
+            blocks.push((t, block));
+            continue;
+        }
         let g: [f64; 3] = std::array::from_fn(|j| {
             let e = sub(positions[f[(j + 2) % 3] as usize], positions[f[(j + 1) % 3] as usize]);
             0.5 * dot(cross(*unit, e), normals[f[j] as usize])
@@ -226,7 +240,7 @@ fn solve_offsets(positions: &[[f64; 3]], faces: &[[u32; 3]], sampled: &[FaceSamp
         for j in 0..3 {
             uniform[f[j] as usize] += area * g[j];
             for k in 0..3 {
-                block[j][k] += AREA_WEIGHT * g[j] * g[k];
+                block[j][k] += area_weight * g[j] * g[k];
             }
         }
         for j in 0..3 {
@@ -245,7 +259,7 @@ fn solve_offsets(positions: &[[f64; 3]], faces: &[[u32; 3]], sampled: &[FaceSamp
             }
         }
         if area_square_sum > 0.0 {
-            let along: f64 = uniform.iter().zip(x).map(|(a, x)| a * x[0]).sum::<f64>() * AREA_WEIGHT / area_square_sum;
+            let along: f64 = uniform.iter().zip(x).map(|(a, x)| a * x[0]).sum::<f64>() * area_weight / area_square_sum;
             for (yi, a) in y.iter_mut().zip(&uniform) {
                 yi[0] -= along * a;
             }
@@ -268,7 +282,8 @@ pub(crate) fn fit_to_surface(inverse: &InverseMap, input: &FitInput, planar: &mu
     let sampled = sample_faces(inverse, positions, planar, input);
     let (rms_before, _) = rms(&sampled);
     let (normals, vertex_area, mean_edge) = normals_and_areas(positions, faces);
-    let (mut offsets, iterations) = solve_offsets(positions, faces, &sampled, &normals, &vertex_area);
+    let area_weight = if input.keep_areas { AREA_WEIGHT } else { 0.0 };
+    let (mut offsets, iterations) = solve_offsets(positions, faces, &sampled, &normals, &vertex_area, area_weight);
     for (o, a) in offsets.iter_mut().zip(&vertex_area) {
         let edge = (4.0 * a / 3f64.sqrt()).sqrt();
         *o = o.clamp(-MAX_OFFSET * edge, MAX_OFFSET * edge);
@@ -286,7 +301,7 @@ pub(crate) fn fit_to_surface(inverse: &InverseMap, input: &FitInput, planar: &mu
     let before_planar = planar.to_vec();
     let stays: Vec<bool> = (0..planar.len()).map(|v| input.fixed[v] || !input.has_plane[v]).collect();
     let mut fitted: Vec<[f64; 3]> = positions.iter().enumerate().map(|(v, &p)| if stays[v] { p } else { add(p, offset_of(v)) }).collect();
-    if input.sweeps > 0 {
+    if input.keep_areas && input.sweeps > 0 {
         refine_towards(planar, &mut fitted, &target, faces, &stays, &lift, RefineOptions::plain(input.sweeps));
     }
     // The vertices' surface points after the equalization (the stayed ones where they were).

@@ -147,7 +147,10 @@ fn remesh_with(mesh: &TriMesh, map: &CapMap, options: &RemeshOptions, shaped: bo
             Optimize::None => 0,
             _ => options.area_equalization,
         };
-        let input = fit::FitInput { faces: &result.faces, has_plane: &result.has_plane, fixed: &result.fixed, sweeps };
+        // A sized remesh's faces are measured by the surface they cover (`shape::covered`):
+        // the fit leaves their chord areas free.
+        let keep_areas = !(shaped && options.shape.sizing.by_covered());
+        let input = fit::FitInput { faces: &result.faces, has_plane: &result.has_plane, fixed: &result.fixed, sweeps, keep_areas };
         result.fit = fit::fit_to_surface(&inverse, &input, &mut result.planar, &mut result.positions, &mut on_surface);
     }
     let surface = if on_surface.is_empty() { &result.positions } else { &on_surface };
