@@ -50,6 +50,8 @@ fn check(name: &str, max_relative_to_input: f64) {
     let mean_edge = edges.iter().sum::<f64>() / edges.len() as f64;
     assert!(q.d_surface_vertex > 0.0 && q.d_surface_vertex <= 0.3 * mean_edge, "{name}: vertices {} off the surface, mean edge {mean_edge}", q.d_surface_vertex);
     assert!(q.d_surface_sampled_relative < 0.01, "{name}: {}", q.d_surface_sampled_relative);
+    // The input's crossing faces, counted while it is mapped, are the input's.
+    assert_eq!(q.self_intersecting_faces_input, capmesh::metrics::count_self_intersecting_faces(&mesh), "{name}");
 }
 
 #[test]

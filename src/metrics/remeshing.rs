@@ -89,6 +89,12 @@ fn mean_distance(points: &[[f64; 3]], to: &SurfaceDistance) -> f64 {
 
 /// All remeshing metrics of `remeshed` against `original`.
 pub fn remesh_metrics(original: &TriMesh, remeshed: &TriMesh) -> RemeshMetrics {
+    remesh_metrics_with(original, remeshed, None)
+}
+
+/// [`remesh_metrics`] with the original's self-intersecting faces already counted (`remesh`
+/// counts them while it maps the input).
+pub(crate) fn remesh_metrics_with(original: &TriMesh, remeshed: &TriMesh, original_crossing: Option<usize>) -> RemeshMetrics {
     let diag = original.bounding_box_diagonal().max(f64::MIN_POSITIVE);
     let (d_face, d_face_relative) = face_area_deviation(remeshed);
     let to_original = SurfaceDistance::new(original);
@@ -100,7 +106,7 @@ pub fn remesh_metrics(original: &TriMesh, remeshed: &TriMesh) -> RemeshMetrics {
     let hausdorff = max_distance(&from_remeshed);
     let angles = angle_quality(remeshed);
     let min_angle = angles.min_angle_deg;
-    let (self_intersecting, self_intersecting_input) = rayon::join(|| count_self_intersecting_faces(remeshed), || count_self_intersecting_faces(original));
+    let (self_intersecting, self_intersecting_input) = rayon::join(|| count_self_intersecting_faces(remeshed), || original_crossing.unwrap_or_else(|| count_self_intersecting_faces(original)));
     RemeshMetrics {
         faces: remeshed.n_faces(),
         vertices: remeshed.n_vertices(),
