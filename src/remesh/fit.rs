@@ -224,23 +224,18 @@ fn solve_offsets(positions: &[[f64; 3]], faces: &[[u32; 3]], sampled: &[FaceSamp
         }
         // The area term: the face's area change, linear in the offsets (gradient of the area
         // with respect to corner j: half the normal crossed with the opposite edge).
-        if area_weight == 0.0 {
+        if area_weight > 0.0 {
+            let g: [f64; 3] = std::array::from_fn(|j| {
+                let e = sub(positions[f[(j + 2) % 3] as usize], positions[f[(j + 1) % 3] as usize]);
+                0.5 * dot(cross(*unit, e), normals[f[j] as usize])
+            });
+            let area = 0.5 * norm(cross(sub(positions[f[1] as usize], positions[f[0] as usize]), sub(positions[f[2] as usize], positions[f[0] as usize])));
+            area_square_sum += area * area;
             for j in 0..3 {
-                diagonal[f[j] as usize] += block[j][j];
-            }
-            blocks.push((t, block));
-            continue;
-        }
-        let g: [f64; 3] = std::array::from_fn(|j| {
-            let e = sub(positions[f[(j + 2) % 3] as usize], positions[f[(j + 1) % 3] as usize]);
-            0.5 * dot(cross(*unit, e), normals[f[j] as usize])
-        });
-        let area = 0.5 * norm(cross(sub(positions[f[1] as usize], positions[f[0] as usize]), sub(positions[f[2] as usize], positions[f[0] as usize])));
-        area_square_sum += area * area;
-        for j in 0..3 {
-            uniform[f[j] as usize] += area * g[j];
-            for k in 0..3 {
-                block[j][k] += area_weight * g[j] * g[k];
+                uniform[f[j] as usize] += area * g[j];
+                for k in 0..3 {
+                    block[j][k] += area_weight * g[j] * g[k];
+                }
             }
         }
         for j in 0..3 {

@@ -361,8 +361,10 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
 fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOptions, shaped: bool, progress: &dyn Progress, locate: bool, start: Instant) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let param = map_options(options, options.grid.approximate_faces());
     // The input's own crossing faces (a metric) are counted while it is mapped: the map
-    // leaves a core idle at times.
-    let (map, input_crossing) = rayon::join(|| parameterize(work, &param, progress), || crate::metrics::self_intersection::count_self_intersecting_faces(mesh));
+    // leaves a core idle at times. Not an input the map will refuse (an index out of range,
+    // a coordinate not finite): it is counted after the map, if the map is made.
+    let countable = mesh.faces.iter().all(|f| f.iter().all(|&v| (v as usize) < mesh.n_vertices())) && mesh.vertices.iter().flatten().all(|x| x.is_finite());
+    let (map, input_crossing) = rayon::join(|| parameterize(work, &param, progress), || countable.then(|| crate::metrics::count_self_intersecting_faces(mesh)));
     let mut map = map?;
     // The input's crossing faces, found once for both puncture ends if a remesh crosses.
     let input_crossings = from_cap::InputCrossings::new(work);
@@ -401,7 +403,7 @@ fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOp
         (p.face, p.barycentric) = crate::mesh::subdivide::parent_point(p.face, p.barycentric, levels);
     }
     let t_metrics = Instant::now();
-    let quality = remesh_metrics_with(mesh, &out, Some(input_crossing));
+    let quality = remesh_metrics_with(mesh, &out, input_crossing);
     let metrics_seconds = t_metrics.elapsed().as_secs_f64();
     let report = RemeshReport {
         param: map.report,
