@@ -70,7 +70,7 @@ fn a_sized_remesh_is_fitted_with_its_chord_areas_free() {
     let mesh = read_mesh(&common::data("closed_brain12k_choi.obj.gz")).unwrap();
     let [(_, f), (_, c)] = [Placement::Fitted, Placement::OnSurface].map(|p| {
         let options = RemeshOptions::default().with_grid(CapGrid::Uniform { faces: 5000 }).with_placement(p);
-        let options = options.clone().with_shape(options.shape.clone().with_sizing(capmesh::Sizing::Curvature { strength: 3.0 }));
+        let options = options.clone().with_shape(options.shape.with_sizing(capmesh::Sizing::Curvature { strength: 3.0 }));
         remesh(&mesh, &options, &NoProgress).unwrap()
     });
     let (qf, qc) = (&f.quality, &c.quality);
