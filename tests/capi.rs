@@ -403,17 +403,20 @@ fn refinement_equalization_and_puncture_end_options_are_passed_through() {
     }
 }
 
-/// A remesh maps a closed input of many more vertices than it needs (the bunny subdivided
-/// twice, 29k vertices, at 1000 faces) through a copy sized to the remesh (10000 vertices) by
-/// default, and at one level with `coarse_map = 0`, as `capmesh_v1_parameterize` does.
+/// A shape+area remesh maps a closed input of many more vertices than it needs (the bunny
+/// subdivided twice, 29k vertices, at 1000 faces) through a copy sized to the remesh (10000
+/// vertices) by default, and at one level with `coarse_map = 0`, as `capmesh_v1_parameterize`
+/// does; without the shape stage (the plain pull-back), whose areas are the map's, at one
+/// level too.
 #[test]
 fn a_remesh_maps_a_fine_closed_input_at_its_own_detail() {
     let fine = capmesh::mesh::subdivide_midpoint(&read("closed_bunny_npm.obj.gz"), 2);
     let arrays = Arrays::of(&fine);
     let o = capmesh_v1_remesh_options { faces: 1000, ..capmesh_v1_remesh_options_default() };
     assert_eq!(o.coarse_map, 1);
-    for (coarse_map, expected) in [(1, serde_json::json!(capmesh::remesh::remesh_copy_vertices(1000))), (0, serde_json::Value::Null)] {
-        let o = capmesh_v1_remesh_options { coarse_map, ..o };
+    let copy = serde_json::json!(capmesh::remesh::remesh_copy_vertices(1000));
+    for (coarse_map, optimize, expected) in [(1, CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA, copy), (0, CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA, serde_json::Value::Null), (1, CAPMESH_V1_OPTIMIZE_NONE, serde_json::Value::Null)] {
+        let o = capmesh_v1_remesh_options { coarse_map, optimize, ..o };
         let (mut out, mut raw) = (null_mut(), null_mut());
         let status = unsafe { capmesh_v1_remesh(&arrays.view(), &o, None, null_mut(), &mut out, &mut raw) };
         assert_eq!(status, CAPMESH_V1_OK, "{}", last_error());

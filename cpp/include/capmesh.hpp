@@ -209,9 +209,9 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     subdivide_coarse = on ? 1 : 0;
     return *this;
   }
-  /// Map a closed input of many more vertices than the remesh needs through a decimated copy
-  /// sized to the remesh (true, the default) or at the detail of the parameterization options
-  /// (false: the CLI's `--fine-map`).
+  /// With the shape stage, map a closed input of many more vertices than the remesh needs
+  /// through a decimated copy sized to the remesh (true, the default) or at the detail of the
+  /// parameterization options (false: the CLI's `--fine-map`; always so without the stage).
   RemeshOptions &with_coarse_map(bool on) {
     coarse_map = on ? 1 : 0;
     return *this;

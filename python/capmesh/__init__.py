@@ -143,8 +143,8 @@ def remesh(vertices, faces, faces_target: int = 5000, lat_long: Optional[Tuple[i
     keep_creases (``--keep-creases``, default False), placement ("fitted", the default, or
     "on-surface": ``--placement``), fill_holes (``--fill-holes``, default False), no_subdivide
     (``--no-subdivide``, default False: an input with fewer faces than asked is mapped subdivided),
-    fine_map (``--fine-map``, default False: a closed input of many more vertices than the remesh
-    needs is mapped through a decimated copy sized to the remesh)."""
+    fine_map (``--fine-map``, default False: with the shape stage, a closed input of many more
+    vertices than the remesh needs is mapped through a decimated copy sized to the remesh)."""
     v, f, report = _capmesh.remesh(_vertices(vertices), _faces(faces), faces_target, lat_long, progress, **options)
     return v, f, _json.loads(report)
 

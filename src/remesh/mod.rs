@@ -313,12 +313,14 @@ pub const REMESH_COPY_PER_FACE: usize = 2;
 pub const MIN_REMESH_COPY: usize = 10_000;
 
 /// The parameterization options of a remesh of about `faces` faces: with
-/// [`RemeshOptions::coarse_map`], a closed input of more than twice
-/// [`remesh_copy_vertices`] maps through a copy of that size (or of the options' own size
-/// when smaller); the options' "never" (`multilevel_above` 0) stands.
-fn map_options(options: &RemeshOptions, faces: u64) -> ParamOptions {
+/// [`RemeshOptions::coarse_map`] and the shape stage (`shaped`, which measures the faces on
+/// the surface itself), a closed input of more than twice [`remesh_copy_vertices`] maps
+/// through a copy of that size (or of the options' own size when smaller); the options'
+/// "never" (`multilevel_above` 0) stands. Without the shape stage the map's own area
+/// distortion sets the remesh's areas: the options' map.
+fn map_options(options: &RemeshOptions, faces: u64, shaped: bool) -> ParamOptions {
     let mut param = options.param.clone();
-    if options.coarse_map && param.closed.multilevel_above > 0 {
+    if options.coarse_map && shaped && param.closed.multilevel_above > 0 {
         let copy = remesh_copy_vertices(faces);
         param.closed.coarse_vertices = param.closed.coarse_vertices.min(copy);
         param.closed.multilevel_above = param.closed.multilevel_above.min(2 * copy);
@@ -359,7 +361,7 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
 /// times: the metrics are against `mesh`, the surface points name its faces.
 #[allow(clippy::too_many_arguments)]
 fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOptions, shaped: bool, progress: &dyn Progress, locate: bool, start: Instant) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
-    let param = map_options(options, options.grid.approximate_faces());
+    let param = map_options(options, options.grid.approximate_faces(), shaped);
     // The input's own crossing faces (a metric) are counted while it is mapped: the map
     // leaves a core idle at times. Not an input the map will refuse (an index out of range,
     // a coordinate not finite): it is counted after the map, if the map is made.

@@ -109,12 +109,14 @@ pub struct RemeshOptions {
     /// its map resolved finer than the remesh's faces. Default true (docs/method.md section
     /// 25, "Coarse inputs").
     pub subdivide_coarse: bool,
-    /// Map a closed input of many more vertices than the remesh needs through a decimated
-    /// copy sized to the remesh ([`remesh_copy_vertices`](super::remesh_copy_vertices)) when
-    /// that is smaller than the one the parameterization's own options would make: the map
-    /// is still prolonged to every input vertex and refined there, so the remesh lies on the
-    /// input, at a higher mean |d_area| than `capmesh param`'s. Default true (docs/method.md
-    /// section 20, "Maps sized to the remesh").
+    /// With the shape stage ([`Optimize::ShapeAndArea`] on the uniform grid), map a closed
+    /// input of many more vertices than the remesh needs through a decimated copy sized to
+    /// the remesh ([`remesh_copy_vertices`](super::remesh_copy_vertices)) when that is
+    /// smaller than the one the parameterization's own options would make: the map is still
+    /// prolonged to every input vertex and refined there, so the remesh lies on the input, at
+    /// a higher mean |d_area| than `capmesh param`'s. Without the shape stage the map's areas
+    /// are the remesh's, and the options' map is made. Default true (docs/method.md section
+    /// 20, "Maps sized to the remesh").
     pub coarse_map: bool,
 }
 

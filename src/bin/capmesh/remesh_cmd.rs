@@ -89,8 +89,9 @@ pub struct RemeshArgs {
     pub no_subdivide: bool,
     /// Map a closed input of many more vertices than the remesh needs at the detail
     /// --multilevel-above and --coarse-vertices ask for, as `capmesh param` does (by default
-    /// it is mapped through a decimated copy of twice the remesh's faces in vertices, at least
-    /// 10000, and prolonged to every vertex: faster, the same remesh, a higher mean |d_area|).
+    /// the shape+area remesh maps it through a decimated copy of twice the remesh's faces in
+    /// vertices, at least 10000, prolonged to every vertex: faster, the same remesh, a higher
+    /// mean |d_area|; --optimize area|none and --lat-long always map as param does).
     #[arg(long)]
     pub fine_map: bool,
     /// Vertex placement: fitted (the default: moved along their normals so that the faces
