@@ -93,12 +93,9 @@ CAPMESH_VARIANTS = {
 }
 # Method key -> (label, kind of size parameter: "count" (faces grow with it) or "length"
 # (faces fall as its square)).
+# capmesh's variants are labelled by their arguments.
 METHODS = {
-    "capmesh": ("capmesh", "count"),
-    "capmesh_on_surface": ("capmesh --placement on-surface", "count"),
-    "capmesh_curv": ("capmesh --sizing curvature", "count"),
-    "capmesh_creases": ("capmesh --keep-creases", "count"),
-    "capmesh_surface": ("capmesh --sizing surface", "count"),
+    **{key: (" ".join(["capmesh", *extra]), "count") for key, extra in CAPMESH_VARIANTS.items()},
     "isotropic": ("MeshLab isotropic explicit remeshing", "length"),
     "isotropic_nf": ("MeshLab isotropic explicit remeshing, feature edges off", "length"),
     "resampling": ("MeshLab uniform mesh resampling", "length"),
