@@ -364,8 +364,8 @@ fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOp
     let param = map_options(options, options.grid.approximate_faces(), shaped);
     // The input's own crossing faces (a metric) are counted while it is mapped: the map
     // leaves a core idle at times. Not an input the map will refuse (an index out of range,
-    // a coordinate not finite): it is counted after the map, if the map is made.
-    let countable = mesh.faces.iter().all(|f| f.iter().all(|&v| (v as usize) < mesh.n_vertices())) && mesh.vertices.iter().flatten().all(|x| x.is_finite());
+    // a coordinate not finite or out of scale): it is counted after the map, if the map is made.
+    let countable = crate::mesh::checks::check_indices(mesh).is_ok() && crate::mesh::validate::check_finite(mesh).is_ok();
     let (map, input_crossing) = rayon::join(|| parameterize(work, &param, progress), || countable.then(|| crate::metrics::count_self_intersecting_faces(mesh)));
     let mut map = map?;
     // The input's crossing faces, found once for both puncture ends if a remesh crosses.
