@@ -404,7 +404,7 @@ fn refinement_equalization_and_puncture_end_options_are_passed_through() {
 }
 
 /// A shape+area remesh maps a closed input of many more vertices than it needs (the bunny
-/// subdivided twice, 29k vertices, at 1000 faces) through a copy sized to the remesh (10000
+/// subdivided twice, 29k vertices, at 1000 faces) through a copy sized to the remesh (6000
 /// vertices) by default, and at one level with `coarse_map = 0`, as `capmesh_v1_parameterize`
 /// does; without the shape stage (the plain pull-back), whose areas are the map's, at one
 /// level too.
@@ -459,7 +459,9 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     let (shaped, report) = run(&o);
     assert_eq!(report["optimize"], "shape+area", "{}", report["optimize"]);
     assert_eq!(report["fit"]["fitted"], true, "{}", report["fit"]);
-    assert_eq!(report["shape"]["iterations"].as_u64(), Some((shape.relax_iterations + shape.polish_iterations) as u64), "{}", report["shape"]);
+    // The polish may stop early once converged, never before its global area steps.
+    let iterations = report["shape"]["iterations"].as_u64().unwrap_or(0) as usize;
+    assert!((shape.relax_iterations + 5 * shape.area_steps..=shape.relax_iterations + shape.polish_iterations).contains(&iterations), "{}", report["shape"]);
     assert_eq!((o.sizing, o.sizing_strength, &report["shape"]["sizing"]), (CAPMESH_V1_SIZING_UNIFORM, 3.0, &serde_json::json!("uniform")));
     let shaped_share = share_below_30(&shaped);
 

@@ -101,8 +101,9 @@ fn closed_brain_48k() {
 
 /// A closed input of many more vertices than the remesh needs (the 48k brain at 5000 faces)
 /// is mapped through a decimated copy sized to the remesh (`RemeshOptions::coarse_map`, the
-/// default), prolonged to every vertex: the remesh meets issue 26's bars as the fine map's
-/// does, at about the same distance to the input, and the map stays good.
+/// default), prolonged to every vertex and refined there by a few sweeps: the remesh meets
+/// issue 26's bars as the fine map's does, at about the same distance to the input, and the
+/// map stays good.
 #[test]
 fn fine_closed_input_maps_at_the_remesh_detail() {
     let mesh = read_mesh(&common::data("closed_brain_choi.obj.gz")).unwrap();
@@ -110,7 +111,8 @@ fn fine_closed_input_maps_at_the_remesh_detail() {
     let (_, copy) = remesh(&mesh, &options, &NoProgress).unwrap();
     let (_, fine) = remesh(&mesh, &options.clone().with_coarse_map(false), &NoProgress).unwrap();
     let copy_vertices = |r: &capmesh::RemeshReport| r.param.multilevel.as_ref().map(|m| m.coarse_vertices);
-    assert_eq!(copy_vertices(&copy), Some(capmesh::remesh::remesh_copy_vertices(5000)));
+    // The copy is sized to the remesh, or an eighth of the input when that is more.
+    assert_eq!(copy_vertices(&copy), Some(capmesh::remesh::remesh_copy_vertices(5000).max(mesh.n_vertices() / capmesh::param::COARSE_RATIO)));
     assert_eq!(copy_vertices(&fine), None, "the fine map is one level below 100k vertices");
     for (name, r) in [("copy", &copy), ("fine", &fine)] {
         let q = &r.quality;
@@ -118,7 +120,9 @@ fn fine_closed_input_maps_at_the_remesh_detail() {
         assert!(q.d_face_relative <= 0.035 && q.mean_min_angle_deg >= 48.0 && q.min_angle_deg >= 15.0, "{name}: {q:?}");
         assert_eq!((r.param.flipped_faces, q.self_intersecting_faces), (0, 0), "{name}");
     }
-    assert!(copy.param.area_distortion.mean_abs < 2.5 * fine.param.area_distortion.mean_abs && copy.param.area_distortion.mean_abs < 0.03);
+    // Refined by a few sweeps only (`remesh::REMESH_COPY_SWEEPS`): a coarser map, still good.
+    assert_eq!(copy.param.area_refinement.sweeps, capmesh::remesh::REMESH_COPY_SWEEPS);
+    assert!(copy.param.area_distortion.mean_abs < 4.0 * fine.param.area_distortion.mean_abs && copy.param.area_distortion.mean_abs < 0.03);
     let ratio = copy.quality.d_surface_sampled_relative / fine.quality.d_surface_sampled_relative;
     assert!(ratio < 1.05, "the copy's remesh is {ratio} times as far from the input");
 }

@@ -258,7 +258,7 @@ fn closed_lung_lobe_decimated() {
 /// (`with_coarse_map(false)`): the end the radius search keeps (its search map within 2% of
 /// the other's) maps poorly around the puncture and its remesh misses the bar, so the other
 /// end is mapped and remeshed too and the better kept. By default the 29k vertices are mapped
-/// through a copy of 10000 ([`RemeshOptions::coarse_map`]), whose first end meets the bars.
+/// through a copy of 6000 ([`RemeshOptions::coarse_map`]), whose first end meets the bars.
 #[test]
 fn closed_bunny_subdivided_twice_tries_the_other_end() {
     let mesh = capmesh::mesh::subdivide_midpoint(&load("closed_bunny_npm.obj.gz"), 2);
@@ -267,7 +267,7 @@ fn closed_bunny_subdivided_twice_tries_the_other_end() {
     let (copy_out, copy) = remesh(&mesh, &options, &NoProgress).unwrap();
     let c = angle_quality(&copy_out);
     eprintln!("through the copy: ends {}, mean smallest angle {:.2}, smallest {:.1}, d_face_rel {:.4}", copy.shape.ends, c.mean_min_angle_deg, c.min_angle_deg, copy.quality.d_face_relative);
-    assert_eq!(copy.param.multilevel.as_ref().map(|m| m.coarse_vertices), Some(10000));
+    assert_eq!(copy.param.multilevel.as_ref().map(|m| m.coarse_vertices), Some(capmesh::remesh::remesh_copy_vertices(5000)));
     assert!(c.mean_min_angle_deg >= 48.0 && c.min_angle_deg >= 15.0 && copy.quality.d_face_relative <= 0.035 && copy.quality.self_intersecting_faces == 0);
     let a = angle_quality(&out);
     eprintln!("subdivided bunny: ends {}, mean smallest angle {:.2}, smallest {:.1}, d_face_rel {:.4}", rep.shape.ends, a.mean_min_angle_deg, a.min_angle_deg, rep.quality.d_face_relative);
@@ -482,4 +482,21 @@ fn open_hand_rebalances_its_areas() {
     // other two starts were remeshed too, the grid's kept (48.66).
     assert_eq!(rep.shape.uncross.slivers_after, faces_below(&out, 15.0), "{:?}", rep.shape.uncross);
     assert_eq!((rep.shape.starts, rep.shape.start), (1, capmesh::remesh::shape::Start::Sample), "{:?}", rep.shape);
+}
+
+/// The polish stops once converged (`ShapeOptions::polish_tolerance`): on the left ventricle
+/// it stops before its last iteration but after the global area steps, and the remesh is
+/// within a few percent of the one that runs every iteration (tolerance 0).
+#[test]
+fn the_polish_stops_once_converged() {
+    let mesh = load("open_lv_endo_rabbit_chaste.obj.gz");
+    let shape = capmesh::remesh::shape::ShapeOptions::default();
+    let options = RemeshOptions::default();
+    let (_, early) = remesh(&mesh, &options, &NoProgress).unwrap();
+    let (_, full) = remesh(&mesh, &options.clone().with_shape(shape.with_polish_tolerance(0.0)), &NoProgress).unwrap();
+    let (e, f) = (&early.quality, &full.quality);
+    eprintln!("iterations {} / {}: d_face_rel {:.4} / {:.4}, mean smallest angle {:.2} / {:.2}", early.shape.iterations, full.shape.iterations, e.d_face_relative, f.d_face_relative, e.mean_min_angle_deg, f.mean_min_angle_deg);
+    assert_eq!(full.shape.iterations, shape.relax_iterations + shape.polish_iterations);
+    assert!((shape.relax_iterations + 5 * shape.area_steps..full.shape.iterations).contains(&early.shape.iterations), "{} iterations", early.shape.iterations);
+    assert!(e.d_face_relative <= 1.1 * f.d_face_relative && (e.mean_min_angle_deg - f.mean_min_angle_deg).abs() < 0.3, "{e:?} against {f:?}");
 }

@@ -73,6 +73,15 @@ fn the_subdivided_12k_brain_maps_as_well_through_a_decimated_copy() {
         r.area_distortion.mean_abs,
         direct.report.area_distortion.mean_abs
     );
+    // The full-resolution refinement sweeps are the options' (`prolonged_refinement`), by
+    // default the area refinement's: without them the prolonged map is unfolded but coarser.
+    assert_eq!(r.area_refinement.sweeps, options.refinement.area_refinement);
+    options.closed = options.closed.clone().with_prolonged_refinement(Some(0));
+    let unrefined = parameterize(&fine, &options, &NoProgress).unwrap_or_else(|e| panic!("subdivided 12k brain, no sweeps: {e}"));
+    let u = &unrefined.report;
+    eprintln!("without the full-resolution sweeps: mean |d_area| {:.4}", u.area_distortion.mean_abs);
+    assert_eq!((u.area_refinement.sweeps, u.flipped_faces), (0, 0));
+    assert!(u.area_distortion.mean_abs > r.area_distortion.mean_abs, "{} against {}", u.area_distortion.mean_abs, r.area_distortion.mean_abs);
     // Punctured at two input faces, whose corners are on the rim of the disk of radius r*.
     assert_eq!(map.bottom_faces.len(), 2);
     let r_star = r.r_star.expect("adaptive domain");

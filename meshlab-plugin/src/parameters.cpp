@@ -150,8 +150,8 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 	list.addParam(RichBool(
 		"CoarseMap", d.coarse_map != 0, "Map a fine input at the remesh's detail",
 		"With the shape stage (shape and area, uniform grid), map a closed input of many more "
-		"vertices than the remesh needs through a decimated copy of twice the remesh's faces in "
-		"vertices (at least 10000), prolonged to every vertex: faster, the same remesh, a higher "
+		"vertices than the remesh needs through a decimated copy of 1.2 times the remesh's faces "
+		"in vertices (at least 6000), prolonged to every vertex: faster, the same remesh, a higher "
 		"mean |d_area|. On by default; off (and always without the shape stage) maps it at the "
 		"detail the multilevel options ask for."));
 	addParamOptions(list, d.param);

@@ -138,7 +138,7 @@ def remesh(vertices, faces, faces_target: int = 5000, lat_long: Optional[Tuple[i
     """Remesh through the adaptive cap, as ``capmesh remesh``: about ``faces_target`` faces
     (``--faces``), or a latitude/longitude grid of ``lat_long = (rings, sectors)``. Returns
     ``(vertices, faces, report)``. Options: those of :func:`parameterize` and
-    area_equalization, optimize, relax_iterations, polish_iterations, area_steps,
+    area_equalization, optimize, relax_iterations, polish_iterations, polish_tolerance, area_steps,
     shape_weight, no_resample, sizing ("uniform", the default, "surface" or "curvature[=S]"),
     keep_creases (``--keep-creases``, default False), placement ("fitted", the default, or
     "on-surface": ``--placement``), fill_holes (``--fill-holes``, default False), no_subdivide

@@ -25,7 +25,7 @@ pub const MAP_OPTIONS: [&str; 10] = [
     "coarse_vertices",
 ];
 /// The options of `remesh` only.
-pub const REMESH_OPTIONS: [&str; 13] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "area_steps", "shape_weight", "no_resample", "sizing", "keep_creases", "placement", "fill_holes", "no_subdivide", "fine_map"];
+pub const REMESH_OPTIONS: [&str; 14] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "polish_tolerance", "area_steps", "shape_weight", "no_resample", "sizing", "keep_creases", "placement", "fill_holes", "no_subdivide", "fine_map"];
 
 fn parsed<T: std::str::FromStr<Err = String>>(value: &Bound<'_, PyAny>) -> PyResult<T> {
     let text: String = value.str()?.extract()?;
@@ -90,6 +90,7 @@ pub fn remesh(grid: capmesh::CapGrid, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
             "optimize" => options.optimize = parsed::<Optimize>(&value)?,
             "relax_iterations" => options.shape = options.shape.clone().with_relax_iterations(number(&name, &value)?),
             "polish_iterations" => options.shape = options.shape.clone().with_polish_iterations(number(&name, &value)?),
+            "polish_tolerance" => options.shape = options.shape.clone().with_polish_tolerance(number(&name, &value)?),
             "area_steps" => options.shape = options.shape.clone().with_area_steps(number(&name, &value)?),
             "shape_weight" => options.shape = options.shape.clone().with_shape_weight(number(&name, &value)?),
             "no_resample" => options.shape = options.shape.clone().with_resample(!number::<bool>(&name, &value)?),

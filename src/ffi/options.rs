@@ -146,8 +146,8 @@ pub struct capmesh_v1_remesh_options {
     /// is anisotropic); 0 = map it as it is (the CLI's `--no-subdivide`).
     pub subdivide_coarse: i32,
     /// 1 = with the shape stage (shape and area on the uniform grid), map a closed input of
-    /// many more vertices than the remesh needs through a decimated copy of twice the
-    /// remesh's faces in vertices (at least 10000), prolonged to every vertex (default:
+    /// many more vertices than the remesh needs through a decimated copy of 1.2 times the
+    /// remesh's faces in vertices (at least 6000), prolonged to every vertex (default:
     /// faster, the same remesh, a higher mean |d_area|); 0 = map it as
     /// `param.multilevel_above` and `param.coarse_vertices` say, as `capmesh_v1_parameterize`
     /// does (the CLI's `--fine-map`; always so without the shape stage).

@@ -169,7 +169,13 @@ pub(crate) fn parameterize_multilevel(mesh: &TriMesh, prepared: &Prepared, optio
     report.welded_vertices = prepared.welded.merged_vertices;
     report.split_vertices = prepared.welded.split_vertices;
     report.puncture = Some(puncture);
-    conclude(mesh, prepared, &faces, &on_boundary, plane, options, progress, report)
+    match options.closed.prolonged_refinement {
+        Some(sweeps) => {
+            let fine = options.clone().with_area_refinement(sweeps);
+            conclude(mesh, prepared, &faces, &on_boundary, plane, &fine, progress, report)
+        }
+        None => conclude(mesh, prepared, &faces, &on_boundary, plane, options, progress, report),
+    }
 }
 
 /// The decimation's length scale ([`decimate`]): the decimated copy keeps the input's edge

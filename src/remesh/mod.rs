@@ -302,20 +302,27 @@ pub fn subdivision_levels(faces: usize, asked: usize) -> usize {
 /// closed input ([`RemeshOptions::coarse_map`]): [`REMESH_COPY_PER_FACE`] per remesh face, at
 /// least [`MIN_REMESH_COPY`].
 pub fn remesh_copy_vertices(faces: u64) -> usize {
-    usize::try_from(faces.saturating_mul(REMESH_COPY_PER_FACE as u64)).unwrap_or(usize::MAX).max(MIN_REMESH_COPY)
+    let copy = (faces as f64 * REMESH_COPY_PER_FACE).ceil();
+    if copy < usize::MAX as f64 { (copy as usize).max(MIN_REMESH_COPY) } else { usize::MAX }
 }
 
-/// Copy vertices per remesh face (four per remesh vertex): see docs/method.md section 20,
+/// Copy vertices per remesh face (2.4 per remesh vertex): see docs/method.md section 20,
 /// "Maps sized to the remesh".
-pub const REMESH_COPY_PER_FACE: usize = 2;
+pub const REMESH_COPY_PER_FACE: f64 = 1.2;
 
 /// The smallest copy [`remesh_copy_vertices`] asks for.
-pub const MIN_REMESH_COPY: usize = 10_000;
+pub const MIN_REMESH_COPY: usize = 6_000;
+
+/// Area refinement sweeps at full resolution after the copy's map is prolonged
+/// ([`crate::ClosedOptions::prolonged_refinement`]): the shape stage equalizes the remesh's
+/// areas on the surface, the map is its chart (docs/method.md section 20).
+pub const REMESH_COPY_SWEEPS: usize = 5;
 
 /// The parameterization options of a remesh of about `faces` faces: with
 /// [`RemeshOptions::coarse_map`] and the shape stage (`shaped`, which measures the faces on
 /// the surface itself), a closed input of more than twice [`remesh_copy_vertices`] maps
-/// through a copy of that size (or of the options' own size when smaller); the options'
+/// through a copy of that size (or of the options' own size when smaller), refined at full
+/// resolution by [`REMESH_COPY_SWEEPS`] sweeps (unless the options say); the options'
 /// "never" (`multilevel_above` 0) stands. Without the shape stage the map's own area
 /// distortion sets the remesh's areas: the options' map.
 fn map_options(options: &RemeshOptions, faces: u64, shaped: bool) -> ParamOptions {
@@ -324,6 +331,7 @@ fn map_options(options: &RemeshOptions, faces: u64, shaped: bool) -> ParamOption
         let copy = remesh_copy_vertices(faces);
         param.closed.coarse_vertices = param.closed.coarse_vertices.min(copy);
         param.closed.multilevel_above = param.closed.multilevel_above.min(2 * copy);
+        param.closed.prolonged_refinement.get_or_insert(REMESH_COPY_SWEEPS);
     }
     param
 }

@@ -55,6 +55,11 @@ pub struct RemeshArgs {
     /// Polish iterations of the shape stage (joint area and shape steps).
     #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().polish_iterations)]
     pub polish_iterations: usize,
+    /// The polish stops early, after its global area steps, once an iteration flips no edge
+    /// and moves the vertices by less than this root mean square, in edge lengths (0: all
+    /// polish iterations run).
+    #[arg(long, default_value_t = capmesh::remesh::shape::ShapeOptions::default().polish_tolerance)]
+    pub polish_tolerance: f64,
     /// Global area steps of the polish: Gauss-Newton steps of the area term over all
     /// vertices at once (one every 5 polish iterations from the first; 0: none), which
     /// remove the smooth part of the area error the per-vertex steps spread slowly.
@@ -89,8 +94,8 @@ pub struct RemeshArgs {
     pub no_subdivide: bool,
     /// Map a closed input of many more vertices than the remesh needs at the detail
     /// --multilevel-above and --coarse-vertices ask for, as `capmesh param` does (by default
-    /// the shape+area remesh maps it through a decimated copy of twice the remesh's faces in
-    /// vertices, at least 10000, prolonged to every vertex: faster, the same remesh, a higher
+    /// the shape+area remesh maps it through a decimated copy of 1.2 times the remesh's faces
+    /// in vertices, at least 6000, prolonged to every vertex: faster, the same remesh, a higher
     /// mean |d_area|; --optimize area|none and --lat-long always map as param does).
     #[arg(long)]
     pub fine_map: bool,
@@ -162,6 +167,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         optimize,
         relax_iterations,
         polish_iterations,
+        polish_tolerance,
         area_steps,
         shape_weight,
         no_resample,
@@ -187,7 +193,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     let read_seconds = t_read.elapsed().as_secs_f64();
     let bar = cli_progress::Bar::new(quiet);
     let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-    let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_area_steps(area_steps).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing).with_keep_creases(keep_creases);
+    let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_polish_tolerance(polish_tolerance).with_area_steps(area_steps).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing).with_keep_creases(keep_creases);
     let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape).with_placement(placement).with_subdivide_coarse(!no_subdivide).with_coarse_map(!fine_map);
     if largest_piece {
         options = options.with_pieces(capmesh::Pieces::Largest);

@@ -73,6 +73,11 @@ pub struct ClosedOptions {
     /// input's when that is more, [`crate::param::COARSE_RATIO`]). Default
     /// [`DEFAULT_COARSE_VERTICES`].
     pub coarse_vertices: usize,
+    /// Sweeps of the area refinement at full resolution after the decimated copy's map is
+    /// prolonged; `None`: [`super::RefinementOptions::area_refinement`]'s. A remesh whose
+    /// shape stage equalizes the areas on the surface itself asks for fewer (see
+    /// `crate::remesh::REMESH_COPY_SWEEPS`). Default `None`.
+    pub prolonged_refinement: Option<usize>,
 }
 
 /// The default [`ClosedOptions::multilevel_above`].
@@ -92,6 +97,7 @@ impl Default for ClosedOptions {
             rescue_stretch_iterations: DEFAULT_RESCUE_STRETCH_ITERATIONS,
             multilevel_above: DEFAULT_MULTILEVEL_ABOVE,
             coarse_vertices: DEFAULT_COARSE_VERTICES,
+            prolonged_refinement: None,
         }
     }
 }
@@ -136,6 +142,12 @@ impl ClosedOptions {
     /// Set [`ClosedOptions::coarse_vertices`].
     pub fn with_coarse_vertices(mut self, coarse_vertices: usize) -> Self {
         self.coarse_vertices = coarse_vertices;
+        self
+    }
+
+    /// Set [`ClosedOptions::prolonged_refinement`] (`None`: the area refinement's sweeps).
+    pub fn with_prolonged_refinement(mut self, sweeps: Option<usize>) -> Self {
+        self.prolonged_refinement = sweeps;
         self
     }
 }

@@ -46,10 +46,11 @@ pub(crate) mod state;
 pub(crate) mod uncross;
 pub(crate) mod worst;
 
-pub use options::{ShapeOptions, COVERED_SHAPE_WEIGHT, DEFAULT_SHAPE_WEIGHT};
+pub use options::{ShapeOptions, COVERED_SHAPE_WEIGHT, DEFAULT_POLISH_TOLERANCE, DEFAULT_SHAPE_WEIGHT};
 pub use report::{ShapeReport, Start};
 pub use uncross::UncrossReport;
 
+use crate::mesh::geometry::{dot, sub};
 use rayon::prelude::*;
 use state::{Role, Shaping, SurfaceLift};
 
@@ -220,7 +221,8 @@ pub(crate) fn optimize_shape(
             }
             _ => flips::Flipper::new(&mesh, crease),
         };
-        report.flips += flips::flip_valence_then_angle(&mut kept, &mut mesh, it < lloyd);
+        let flipped = flips::flip_valence_then_angle(&mut kept, &mut mesh, it < lloyd);
+        report.flips += flipped;
         flipper = Some(kept);
         // An open surface's boundary cycle changes with splits and collapses only (a flipped
         // edge is an interior one); a closed surface's rim does not slide.
@@ -251,6 +253,7 @@ pub(crate) fn optimize_shape(
             report.iterations += 1;
             continue;
         }
+        let mut moved_sq = 0.0;
         for class in &classes {
             let moves: Vec<(u32, Option<Move>)> = class
                 .par_iter()
@@ -268,6 +271,8 @@ pub(crate) fn optimize_shape(
             for (v, step) in moves {
                 if let Some((q, x, h, s)) = step {
                     let v = v as usize;
+                    let d = sub(x, mesh.position[v]);
+                    moved_sq += dot(d, d);
                     mesh.plane[v] = q;
                     mesh.position[v] = x;
                     if h != u32::MAX {
@@ -281,6 +286,11 @@ pub(crate) fn optimize_shape(
             }
         }
         report.iterations += 1;
+        // Converged: no flip, and the vertices moved by a tiny fraction of an edge.
+        let after_global = polish_it.is_some_and(|k| k >= options.area_steps * global_area::AREA_STEP_SPACING);
+        if after_global && flipped == 0 && moved_sq < (options.polish_tolerance.max(0.0) * target_len * len_factor).powi(2) * mesh.position.len() as f64 {
+            break;
+        }
     }
     if lloyd + options.polish_iterations > 0 {
         report.flips += flips::flip_to_max_min_angle(&mut mesh, crease);
