@@ -14,8 +14,10 @@ benchmarks/stage_bench.sh, which builds capmesh and the synthetic meshes.
 `--scale` (issue 27) runs only the growth series instead: the 12k and 48k brains of tests/data,
 each midpoint-subdivided once and twice (50k, 194k, 776k vertices: the same surfaces, so the
 same map is expected), a folded (cortex-like) closed surface of 131k vertices and a 1M-vertex
-closed surface (the bumpy ellipsoid on the geodesic sphere), once each without MeshLab, then
-the 131k, 194k, 776k and 1M cases again at one level (`--multilevel-above 0`); it writes the stage times, peak RSS, mean |d_area| and the
+closed surface (the bumpy ellipsoid on the geodesic sphere), once each without MeshLab and
+with `--fine-map` (maps as `capmesh param` makes them), then the 131k, 194k, 776k and 1M cases
+again at one level (`--multilevel-above 0`) and the 48k brain as the default command remeshes
+it; it writes the stage times, peak RSS, mean |d_area| and the
 fitted growth exponent of each stage (least squares of log time on log V over the 48k brain's
 series) to benchmarks/results/stage_bench_scale.{md,json}. `--max-vertices N` leaves out the
 subdivided and synthetic cases above N vertices (the bundled brains always run; on a shared
@@ -97,6 +99,19 @@ def run_child(argv, limit):
     return status, wall, usage.ru_maxrss / 1024.0, out, err
 
 
+def input_vertices(path):
+    """The vertex count of an OBJ (optionally gzipped) or PLY file, from its text."""
+    if path.endswith(".ply"):
+        with open(path, "rb") as f:
+            for line in f:
+                if line.startswith(b"element vertex"):
+                    return int(line.split()[2])
+        return None
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "rt") as f:
+        return sum(1 for line in f if line.startswith("v "))
+
+
 def ours(path, workdir, limit, extra=()):
     report = os.path.join(workdir, "report.json")
     out = os.path.join(workdir, "out.ply")
@@ -111,7 +126,9 @@ def ours(path, workdir, limit, extra=()):
         r = json.load(f)
     p = r["parameterization"]
     row.update(
-        vertices=p["n_vertices"],
+        # An input coarser than the remesh is mapped subdivided (`subdivided` times): V is the input's.
+        vertices=p["n_vertices"] if not r.get("subdivided") else input_vertices(path),
+        mapped_vertices=p["n_vertices"],
         faces_in=p["n_faces"],
         kind=p["kind"],
         read=r["read_seconds"],
@@ -257,6 +274,10 @@ def growth_exponent(points):
     return None if sxx == 0 else sum((x - mx) * (y - my) for x, y in pts) / sxx
 
 
+# The --scale row of the 48k brain remeshed by the default command (no --fine-map).
+DEFAULT_48K = "closed_brain_choi, default remesh"
+
+
 def write_scale_report(rows, info, series):
     os.makedirs(RESULTS, exist_ok=True)
     ok = {r["name"]: r["ours"] for r in rows if r["ours"].get("status") == 0}
@@ -269,7 +290,8 @@ def write_scale_report(rows, info, series):
         "",
         f"Machine: {info['cpu']}, {info['cores']} cores, {info['memory']}; {info['os']}; {info['rustc']}; {info['date']}.",
         "One run of `bash benchmarks/stage_bench.sh --scale`: `capmesh remesh IN --faces "
-        f"{FACES}` per mesh, once each, in its own process. The machine is shared"
+        f"{FACES} --fine-map` per mesh (the map as `capmesh param` makes it: the series compares maps), once each, in its own process; "
+        f"the row `{DEFAULT_48K}` is the default command (no `--fine-map`: the 48k brain mapped through a copy sized to the remesh, docs/method.md section 20). The machine is shared"
         + (f" (load average {load[0]:.1f} at the start, {load[1]:.1f} at the end on {info['cores']} cores)" if load else "")
         + ": the seconds are wall time under that load and vary from run to run; CPU seconds (user + system) of the whole process are given beside them.",
         "Subdivided meshes are the same surface (midpoint 1:4 split, `synth_mesh subdivide`), so their mean |d_area| should match the coarse one's.",
@@ -318,10 +340,10 @@ def write_scale_report(rows, info, series):
         lines.append(f"1M closed surface: {m['param_remesh']:.1f} s, {m['peak_rss_mib']:.0f} MiB peak ({'met' if met else 'not met'}: 60 s, 4 GiB).")
     f = ok.get("synthetic folded 131k")
     if f:
-        lines.append(f"131k-class (folded 131k): param {f['param']:.2f} s, param+remesh {f['param_remesh']:.2f} s wall ({'met' if f['param'] <= 4 else 'not met'} for the map: 4 s).")
-    br = ok.get("closed_brain_choi")
+        lines.append(f"131k-class (folded 131k): param {f['param']:.2f} s, param+remesh {f['param_remesh']:.2f} s wall ({'met' if f['param_remesh'] <= 4 else 'not met'}: 4 s for param+remesh).")
+    br = ok.get(DEFAULT_48K)
     if br:
-        lines.append(f"48k brain: param {br['param']:.2f} s wall, {fmt(br.get('cpu_seconds'), 1)} CPU s for the whole process ({'met' if br['param'] <= 1 else 'not met'}: 1 s).")
+        lines.append(f"48k brain: param {br['param']:.2f} s, param+remesh {br['param_remesh']:.2f} s wall, {fmt(br.get('cpu_seconds'), 1)} CPU s for the whole process ({'met' if br['param_remesh'] <= 1 else 'not met'}: 1 s for param+remesh).")
     missing = [n for n in [r[0] for r in info.get("cases", [])] if n not in [r["name"] for r in rows]]
     if missing:
         lines.append("Not run (the run was stopped before them): " + ", ".join(missing) + ".")
@@ -377,10 +399,14 @@ def scale(args):
     # The largest cases again at one level (the pipeline before the multilevel path), for the
     # side-by-side ratios.
     cases += [(n + " one level", p) for n, p in cases if n in ("synthetic folded 131k", "closed_brain_choi x1", "closed_brain_choi x2", "synthetic closed ellipsoid 1m")]
+    # The 48k brain as the default command remeshes it (its map through a copy sized to the
+    # remesh); the series maps as `capmesh param` does (`--fine-map`), since it compares maps.
+    cases.append((DEFAULT_48K, os.path.join(DATA, "closed_brain_choi.obj.gz")))
     rows = []
     for name, path in cases:
         print(f"{name}: capmesh ...", flush=True)
-        o = ours(path, work, args.limit, ["--multilevel-above", "0"] if name.endswith(" one level") else [])
+        extra = ["--multilevel-above", "0"] if name.endswith(" one level") else [] if name == DEFAULT_48K else ["--fine-map"]
+        o = ours(path, work, args.limit, extra)
         rows.append({"name": name, "vertices": o.get("vertices"), "ours": o})
         print(f"  {o.get('status')} param+remesh {fmt(o.get('param_remesh'))} s, CPU {fmt(o.get('cpu_seconds'), 1)} s, peak {o['peak_rss_mib']:.0f} MiB, mean |d_area| {fmt(o.get('mean_abs_area_distortion'), 4)}", flush=True)
         info["load_average"] = [info["load_average"][0], os.getloadavg()[0]]
