@@ -114,6 +114,10 @@ fn fine_closed_input_maps_at_the_remesh_detail() {
     // The copy is sized to the remesh, or an eighth of the input when that is more.
     assert_eq!(copy_vertices(&copy), Some(capmesh::remesh::remesh_copy_vertices(5000).max(mesh.n_vertices() / capmesh::param::COARSE_RATIO)));
     assert_eq!(copy_vertices(&fine), None, "the fine map is one level below 100k vertices");
+    // A sized remesh measures its faces by the surface they cover through the map: its map
+    // is the options' (one level here).
+    let sized = options.clone().with_shape(capmesh::remesh::shape::ShapeOptions::default().with_sizing(capmesh::Sizing::Curvature { strength: 3.0 }));
+    assert_eq!(copy_vertices(&remesh(&mesh, &sized, &NoProgress).unwrap().1), None);
     for (name, r) in [("copy", &copy), ("fine", &fine)] {
         let q = &r.quality;
         eprintln!("{name}: mean |d_area| {:.4}, d_face_rel {:.4}, mean smallest angle {:.2}, d_surf {:.3e}", r.param.area_distortion.mean_abs, q.d_face_relative, q.mean_min_angle_deg, q.d_surface_sampled_relative);

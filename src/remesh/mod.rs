@@ -316,7 +316,7 @@ pub const MIN_REMESH_COPY: usize = 6_000;
 /// Area refinement sweeps at full resolution after the copy's map is prolonged
 /// ([`crate::ClosedOptions::prolonged_refinement`]): the shape stage equalizes the remesh's
 /// areas on the surface, the map is its chart (docs/method.md section 20).
-pub const REMESH_COPY_SWEEPS: usize = 5;
+pub const REMESH_COPY_SWEEPS: usize = 10;
 
 /// The parameterization options of a remesh of about `faces` faces: with
 /// [`RemeshOptions::coarse_map`] and the shape stage (`shaped`, which measures the faces on
@@ -324,10 +324,11 @@ pub const REMESH_COPY_SWEEPS: usize = 5;
 /// through a copy of that size (or of the options' own size when smaller), refined at full
 /// resolution by [`REMESH_COPY_SWEEPS`] sweeps (unless the options say); the options'
 /// "never" (`multilevel_above` 0) stands. Without the shape stage the map's own area
-/// distortion sets the remesh's areas: the options' map.
+/// distortion sets the remesh's areas, and a sized remesh measures its faces by the surface
+/// they cover through the map: both get the options' map.
 fn map_options(options: &RemeshOptions, faces: u64, shaped: bool) -> ParamOptions {
     let mut param = options.param.clone();
-    if options.coarse_map && shaped && param.closed.multilevel_above > 0 {
+    if options.coarse_map && shaped && !options.shape.sizing.by_covered() && param.closed.multilevel_above > 0 {
         let copy = remesh_copy_vertices(faces);
         param.closed.coarse_vertices = param.closed.coarse_vertices.min(copy);
         param.closed.multilevel_above = param.closed.multilevel_above.min(2 * copy);
