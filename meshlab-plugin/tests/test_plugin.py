@@ -155,8 +155,12 @@ def test_default_shape_and_area_remesh_has_few_thin_faces(plugin, mesh_file):
         out = ms.current_mesh()
         shares[optimize], faces[optimize] = share_below_30_degrees(out), out.face_number()
         assert report["face_count"] == out.face_number()
-        # 40 relaxation + 85 polish iterations with shape+area, no shape stage with area
-        assert report["shape_iterations"] == (125 if optimize == "shape+area" else 0)
+        # 40 relaxation + at most 85 polish iterations with shape+area (the polish stops once
+        # converged, never before its 6 global area steps, 5 apart), no shape stage with area
+        if optimize == "shape+area":
+            assert 40 + 30 <= report["shape_iterations"] <= 125
+        else:
+            assert report["shape_iterations"] == 0
         assert topology(ms)[0] > 0  # still open
     print("share of faces below 30 degrees:", shares, "faces:", faces)
     assert shares["shape+area"] < 0.05
