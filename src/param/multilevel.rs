@@ -169,13 +169,16 @@ pub(crate) fn parameterize_multilevel(mesh: &TriMesh, prepared: &Prepared, optio
     report.welded_vertices = prepared.welded.merged_vertices;
     report.split_vertices = prepared.welded.split_vertices;
     report.puncture = Some(puncture);
-    match options.closed.prolonged_refinement {
+    // The full-resolution sweeps are `prolonged_refinement`'s when the options ask for them.
+    let refined;
+    let options = match options.closed.prolonged_refinement {
         Some(sweeps) => {
-            let fine = options.clone().with_area_refinement(sweeps);
-            conclude(mesh, prepared, &faces, &on_boundary, plane, &fine, progress, report)
+            refined = options.clone().with_area_refinement(sweeps);
+            &refined
         }
-        None => conclude(mesh, prepared, &faces, &on_boundary, plane, options, progress, report),
-    }
+        None => options,
+    };
+    conclude(mesh, prepared, &faces, &on_boundary, plane, options, progress, report)
 }
 
 /// The decimation's length scale ([`decimate`]): the decimated copy keeps the input's edge

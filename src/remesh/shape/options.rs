@@ -111,8 +111,8 @@ impl ShapeOptions {
 }
 
 /// The default [`ShapeOptions::polish_tolerance`]: a thousandth of an edge. On the shared
-/// meshes the polish then stops 10 to 40 iterations early on 7 of the 11 and their figures
-/// move by a few percent of themselves at most (`d_face_relative` up to 4% higher, the mean
+/// meshes the polish then stops 20 to 40 iterations early on 8 of the 11 and their figures
+/// move by a few percent of themselves at most (`d_face_relative` up to 6% higher, the mean
 /// smallest angle within 0.1 degree; docs/method.md section 18, "Polish convergence").
 pub const DEFAULT_POLISH_TOLERANCE: f64 = 1e-3;
 
