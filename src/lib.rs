@@ -63,7 +63,7 @@ pub use io::{
 pub use mesh::TriMesh;
 pub use param::{parameterize, ClosedOptions, MapQuality, OpenOptions, ParamOptions, ParamReport, RefinementOptions, SearchOptions};
 pub use progress::{NoProgress, Progress, Stage};
-pub use remesh::shape::{ShapeOptions, ShapeReport};
+pub use remesh::shape::{Creases, ShapeOptions, ShapeReport};
 pub use remesh::sizing::Sizing;
 pub use remesh::transfer::carry_attribute;
 pub use remesh::{remesh, remesh_located, CapGrid, FitReport, Holes, Optimize, Pieces, Placement, RemeshOptions, RemeshReport};

@@ -442,8 +442,8 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     assert_eq!(o.optimize, CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA);
     let shape = capmesh::remesh::shape::ShapeOptions::default();
     assert_eq!(
-        (o.relax_iterations as usize, o.polish_iterations as usize, o.area_steps as usize, o.shape_weight, o.resample != 0, o.keep_creases != 0),
-        (shape.relax_iterations, shape.polish_iterations, shape.area_steps, shape.shape_weight, shape.resample, shape.keep_creases)
+        (o.relax_iterations as usize, o.polish_iterations as usize, o.area_steps as usize, o.shape_weight, o.resample != 0, o.creases == CAPMESH_V1_CREASES_AUTO, o.polish_tolerance),
+        (shape.relax_iterations, shape.polish_iterations, shape.area_steps, shape.shape_weight, shape.resample, shape.creases == capmesh::Creases::Auto, shape.polish_tolerance)
     );
     o.faces = 2000;
     let run = |o: &capmesh_v1_remesh_options| {
@@ -464,6 +464,11 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     assert!((shape.relax_iterations + 5 * shape.area_steps..=shape.relax_iterations + shape.polish_iterations).contains(&iterations), "{}", report["shape"]);
     assert_eq!((o.sizing, o.sizing_strength, &report["shape"]["sizing"]), (CAPMESH_V1_SIZING_UNIFORM, 3.0, &serde_json::json!("uniform")));
     let shaped_share = share_below_30(&shaped);
+    // The polish tolerance is passed through: 0 runs every polish iteration.
+    let mut every = o;
+    every.polish_tolerance = 0.0;
+    let (_, report) = run(&every);
+    assert_eq!(report["shape"]["iterations"].as_u64(), Some((shape.relax_iterations + shape.polish_iterations) as u64), "{}", report["shape"]);
 
     o.optimize = CAPMESH_V1_OPTIMIZE_AREA;
     let (area, report) = run(&o);
@@ -490,6 +495,12 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     o.sizing = CAPMESH_V1_SIZING_CURVATURE;
     let (_, report) = run(&o);
     assert_eq!(report["shape"]["sizing"], "curvature=2.5", "{}", report["shape"]);
+    assert_eq!(report["shape"]["keep_creases"], true, "{}", report["shape"]);
+    // The crease handling is passed through: off with curvature sizing.
+    o.creases = CAPMESH_V1_CREASES_OFF;
+    let (_, report) = run(&o);
+    assert_eq!(report["shape"]["keep_creases"], false, "{}", report["shape"]);
+    o.creases = CAPMESH_V1_CREASES_AUTO;
     // The placement is passed through: on the surface, no fit.
     o.placement = CAPMESH_V1_PLACEMENT_ON_SURFACE;
     let (_, report) = run(&o);
@@ -529,8 +540,17 @@ fn the_default_remesh_optimizes_shape_and_area_through_the_c_abi() {
     bad.resample = 2;
     refused(&bad, "resample = 2");
     let mut bad = capmesh_v1_remesh_options_default();
-    bad.keep_creases = -1;
-    refused(&bad, "keep_creases = -1");
+    bad.creases = 3;
+    refused(&bad, "creases = 3");
+    let mut bad = capmesh_v1_remesh_options_default();
+    assert_eq!(bad.crease_deg, 60.0);
+    bad.crease_deg = 180.0;
+    refused(&bad, "crease_deg = 180");
+    let mut bad = capmesh_v1_remesh_options_default();
+    bad.polish_tolerance = -1.0;
+    refused(&bad, "polish_tolerance = -1");
+    bad.polish_tolerance = f64::NAN;
+    refused(&bad, "polish_tolerance");
     let mut bad = capmesh_v1_remesh_options_default();
     bad.fill_holes = 2;
     refused(&bad, "fill_holes = 2");

@@ -429,16 +429,16 @@ fn thin_faces_are_moved_for_shape() {
     assert!(rep.quality.d_face_relative <= 0.035, "{}", rep.quality.d_face_relative);
 }
 
-/// The remesh of `name` at 5000 faces without and with `ShapeOptions::keep_creases`.
+/// The remesh of `name` at 5000 faces without and with `Creases::Keep`.
 fn without_and_with_creases(name: &str) -> ((TriMesh, capmesh::remesh::RemeshReport), (TriMesh, capmesh::remesh::RemeshReport)) {
     let mesh = load(name);
     let mut options = RemeshOptions::default().with_placement(Placement::OnSurface).with_grid(CapGrid::Uniform { faces: 5000 });
     let plain = remesh(&mesh, &options, &NoProgress).unwrap();
-    options.shape = options.shape.with_keep_creases(true);
+    options.shape = options.shape.with_creases(capmesh::Creases::Keep);
     (plain, remesh(&mesh, &options, &NoProgress).unwrap())
 }
 
-/// `ShapeOptions::keep_creases` on the lung lobe (a sharp edge, its faces' normals more than
+/// `Creases::Keep` on the lung lobe (a sharp edge, its faces' normals more than
 /// 60 degrees apart):
 /// vertices go onto the crease and are joined along it, so the sampled distance to the input
 /// falls by more than a third while the angles and areas keep their bars.
@@ -456,7 +456,7 @@ fn creases_are_kept_on_the_lung_lobe() {
 }
 
 /// The hippocampal sheet's sharp edges are the steps of a segmentation, sharp between two
-/// input faces but not at the remesh's scale: `keep_creases` finds no crease there and the
+/// input faces but not at the remesh's scale: `Creases::Keep` finds no crease there and the
 /// remesh is the one without it.
 #[test]
 fn a_staircase_is_not_a_crease() {

@@ -143,6 +143,23 @@
 #define CAPMESH_V1_PLACEMENT_ON_SURFACE 1
 
 /**
+ * `capmesh_v1_remesh_options.creases`: vertices on the input's creases with curvature
+ * sizing only (default; the CLI's `--creases auto`).
+ */
+#define CAPMESH_V1_CREASES_AUTO 0
+
+/**
+ * `capmesh_v1_remesh_options.creases`: vertices on the input's creases, joined by edges (the
+ * CLI's `--creases keep`).
+ */
+#define CAPMESH_V1_CREASES_KEEP 1
+
+/**
+ * `capmesh_v1_remesh_options.creases`: creases not kept (the CLI's `--creases off`).
+ */
+#define CAPMESH_V1_CREASES_OFF 2
+
+/**
  * `capmesh_v1_remesh_options.sizing`: equal face areas (default; the CLI's `--sizing
  * uniform`).
  */
@@ -399,10 +416,15 @@ typedef struct capmesh_v1_remesh_options {
    */
   uint32_t area_steps;
   /**
-   * 1 = put vertices on the input's creases and join them by edges (the CLI's
-   * `--keep-creases`); 0 = off (default).
+   * One of `CAPMESH_V1_CREASES_*`: whether vertices are put on the input's creases and
+   * joined by edges. Default auto (0): with `CAPMESH_V1_SIZING_CURVATURE` only.
    */
-  int32_t keep_creases;
+  int32_t creases;
+  /**
+   * The crease bound in degrees, in (0, 180): input edges bent more are creases, and no
+   * edge flip bends a pair of faces more (the CLI's `--crease-angle`). Default 60.
+   */
+  double crease_deg;
   /**
    * One of `CAPMESH_V1_PLACEMENT_*`: where the vertices are put at the end. Default fitted
    * (0).
@@ -428,6 +450,12 @@ typedef struct capmesh_v1_remesh_options {
    * does (the CLI's `--fine-map`; always so without the shape stage).
    */
   int32_t coarse_map;
+  /**
+   * The polish stops early, after its global area steps, once an iteration flips no edge
+   * and moves the vertices by less than this root mean square, in edge lengths; finite and
+   * >= 0 (0 = every polish iteration runs). Default 0.001.
+   */
+  double polish_tolerance;
 } capmesh_v1_remesh_options;
 
 /**

@@ -91,6 +91,16 @@ enum class Optimize : int32_t {
   Plain = CAPMESH_V1_OPTIMIZE_NONE,
 };
 
+/// Whether the shape stage puts vertices on the input's creases.
+enum class Creases : int32_t {
+  /// Kept with curvature sizing only (default).
+  Auto = CAPMESH_V1_CREASES_AUTO,
+  /// Kept.
+  Keep = CAPMESH_V1_CREASES_KEEP,
+  /// Not kept.
+  Off = CAPMESH_V1_CREASES_OFF,
+};
+
 /// Progress sink: completed fraction of `stage` in [0, 1] and a short message. Return false to
 /// cancel (the call then throws Error with Status::Cancelled). Called on the calling thread.
 using Progress = std::function<bool(Stage stage, double fraction, const char *message)>;
@@ -153,7 +163,8 @@ struct ParamOptions : capmesh_v1_param_options {
 };
 
 /// Remeshing options with capmesh's defaults (uniform grid of about 5000 faces, shape+area
-/// optimisation with 20 relaxation and 20 polish iterations, shape weight 0.3, no resampling).
+/// optimisation with 40 relaxation and up to 85 polish iterations, shape weight 0.13, edge
+/// splits and collapses on).
 /// The fields of capmesh_v1_remesh_options can be set directly; the with_* setters chain.
 struct RemeshOptions : capmesh_v1_remesh_options {
   RemeshOptions() : capmesh_v1_remesh_options(capmesh_v1_remesh_options_default()) {}
@@ -191,10 +202,22 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     sizing_strength = strength;
     return *this;
   }
-  /// Put vertices on the input's creases and join them by edges (the CLI's
-  /// `--keep-creases`).
-  RemeshOptions &with_keep_creases(bool on) {
-    keep_creases = on ? 1 : 0;
+  /// Whether vertices are put on the input's creases and joined by edges (the CLI's
+  /// `--creases auto|keep|off`; auto, the default, keeps them with curvature sizing only).
+  RemeshOptions &with_creases(Creases c) {
+    creases = static_cast<int32_t>(c);
+    return *this;
+  }
+  /// The crease bound in degrees, in (0, 180): input edges bent more are creases, and no edge
+  /// flip bends a pair of faces more (the CLI's `--crease-angle`; 60 by default).
+  RemeshOptions &with_crease_angle(double degrees) {
+    crease_deg = degrees;
+    return *this;
+  }
+  /// The polish stops once an iteration moves the vertices by less than this root mean
+  /// square, in edge lengths, after its global area steps (>= 0; 0: every iteration runs).
+  RemeshOptions &with_polish_tolerance(double tolerance) {
+    polish_tolerance = tolerance;
     return *this;
   }
   /// Fill each hole of an open surface with a fan of faces and remesh the closed surface (the

@@ -207,8 +207,10 @@ void optimize_options() {
   DMesh input = read<DMesh>(helmet);
   capmesh::RemeshOptions o = capmesh::RemeshOptions::uniform(1000);
   CHECK(o.optimize == CAPMESH_V1_OPTIMIZE_SHAPE_AND_AREA);
-  CHECK(o.relax_iterations == 40 && o.polish_iterations == 85 && o.area_steps == 6 && o.shape_weight == 0.13 && o.resample == 1 && o.keep_creases == 0);
-  CHECK(capmesh::RemeshOptions::uniform(1000).with_keep_creases(true).keep_creases == 1);
+  CHECK(o.relax_iterations == 40 && o.polish_iterations == 85 && o.area_steps == 6 && o.shape_weight == 0.13 && o.resample == 1 && o.creases == CAPMESH_V1_CREASES_AUTO);
+  CHECK(capmesh::RemeshOptions::uniform(1000).with_creases(capmesh::Creases::Keep).creases == CAPMESH_V1_CREASES_KEEP);
+  CHECK(o.crease_deg == 60.0 && capmesh::RemeshOptions::uniform(1000).with_crease_angle(45.0).crease_deg == 45.0);
+  CHECK(o.polish_tolerance == 1e-3 && capmesh::RemeshOptions::uniform(1000).with_polish_tolerance(0.0).polish_tolerance == 0.0);
   CHECK(o.fill_holes == 0 && capmesh::RemeshOptions::uniform(1000).with_fill_holes(true).fill_holes == 1);
   CHECK(o.subdivide_coarse == 1 && capmesh::RemeshOptions::uniform(1000).with_subdivide_coarse(false).subdivide_coarse == 0);
   CHECK(o.coarse_map == 1 && capmesh::RemeshOptions::uniform(1000).with_coarse_map(false).coarse_map == 0);

@@ -17,6 +17,8 @@ const QStringList gridNames = {"Uniform", "Latitude-longitude"};
 const QStringList optimizeNames = {"shape+area", "area", "none"};
 // In the order of CAPMESH_V1_SIZING_*.
 const QStringList sizingNames = {"uniform", "surface", "curvature"};
+// In the order of CAPMESH_V1_CREASES_AUTO, _KEEP, _OFF (0, 1, 2).
+const QStringList creaseNames = {"auto", "keep", "off"};
 // Index i: basis and boundary of capmesh_v1_harmonics_options (0: AH; 1..3: SCHA with
 // boundary i - 1).
 const QStringList basisNames = {
@@ -104,6 +106,11 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 	list.addParam(RichInt(
 		"PolishIterations", clampToInt(d.polish_iterations), "Polish iterations (shape+area)",
 		"Iterations of the joint area and shape polish in the shape stage."));
+	list.addParam(RichFloat(
+		"PolishTolerance", Scalarm(d.polish_tolerance), "Polish tolerance (shape+area)",
+		"The polish stops early, after its global area steps, once an iteration flips no edge "
+		"and moves the vertices by less than this root mean square, in edge lengths (>= 0; 0: "
+		"every polish iteration runs)."));
 	list.addParam(RichInt(
 		"AreaSteps", clampToInt(d.area_steps), "Global area steps (shape+area)",
 		"Gauss-Newton steps of the area term over all vertices at once, one every 5 polish "
@@ -127,11 +134,16 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 		"SizingStrength", Scalarm(d.sizing_strength), "Curvature strength (curvature sizing)",
 		"Strength > 0 of the curvature sizing: the density is 1 + S k L (3 is the command "
 		"line's --sizing curvature)."));
-	list.addParam(RichBool(
-		"KeepCreases", d.keep_creases != 0, "Keep creases (shape+area)",
-		"Put vertices on the input's sharp edges (faces bent by more than 60 degrees, also at the "
-		"remesh's scale) and join them by edges: a smaller distance to the input on surfaces with "
-		"real sharp edges; off by default (a finely remeshed segmentation's steps count too)."));
+	list.addParam(RichEnum(
+		"Creases", d.creases, creaseNames, "Creases (shape+area)",
+		"Whether vertices are put on the input's sharp edges (faces bent by more than the crease "
+		"angle, also at the remesh's scale) and joined by edges: a smaller distance to the input "
+		"on surfaces with real sharp edges, worse angles where a finely remeshed segmentation's "
+		"steps count too. auto (default): with curvature sizing only."));
+	list.addParam(RichFloat(
+		"CreaseAngle", Scalarm(d.crease_deg), "Crease angle (shape+area)",
+		"Degrees, strictly between 0 and 180: input edges bent more are creases, and no edge flip "
+		"bends a pair of faces more (60 by default)."));
 	list.addParam(RichBool(
 		"VerticesOnSurface", d.placement == CAPMESH_V1_PLACEMENT_ON_SURFACE, "Vertices on the surface",
 		"Leave the vertices on the input surface. Off by default: they are moved along their "
@@ -171,6 +183,9 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 		throw MLException(QString("Capmesh: unknown optimization %1.").arg(o.optimize));
 	o.relax_iterations = nonNegative(list, "RelaxIterations");
 	o.polish_iterations = nonNegative(list, "PolishIterations");
+	o.polish_tolerance = double(list.getFloat("PolishTolerance"));
+	if (!(o.polish_tolerance >= 0.0))
+		throw MLException(QString("Capmesh: parameter PolishTolerance must be >= 0, got %1.").arg(o.polish_tolerance));
 	o.area_steps = nonNegative(list, "AreaSteps");
 	o.shape_weight = double(list.getFloat("ShapeWeight"));
 	o.resample = list.getBool("Resample") ? 1 : 0;
@@ -178,7 +193,10 @@ capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list)
 	if (o.sizing < 0 || o.sizing >= sizingNames.size())
 		throw MLException(QString("Capmesh: unknown sizing %1.").arg(o.sizing));
 	o.sizing_strength = double(list.getFloat("SizingStrength"));
-	o.keep_creases = list.getBool("KeepCreases") ? 1 : 0;
+	o.creases = int32_t(list.getEnum("Creases"));
+	if (o.creases < 0 || o.creases >= creaseNames.size())
+		throw MLException(QString("Capmesh: unknown crease handling %1.").arg(o.creases));
+	o.crease_deg = double(list.getFloat("CreaseAngle"));
 	o.placement = list.getBool("VerticesOnSurface") ? CAPMESH_V1_PLACEMENT_ON_SURFACE : CAPMESH_V1_PLACEMENT_FITTED;
 	o.fill_holes = list.getBool("FillHoles") ? 1 : 0;
 	o.subdivide_coarse = list.getBool("SubdivideCoarse") ? 1 : 0;

@@ -16,8 +16,10 @@ namespace capmesh_meshlab {
 void addParamOptions(RichParameterList& list, const capmesh_v1_param_options& defaults);
 capmesh_v1_param_options readParamOptions(const RichParameterList& list);
 
-/// Grid, Faces, Rings, Sectors, Optimize, RelaxIterations, PolishIterations, ShapeWeight,
-/// Resample, then the parameterization options.
+/// Grid, Faces, Rings, Sectors, Optimize, RelaxIterations, PolishIterations, PolishTolerance,
+/// AreaSteps, ShapeWeight, Resample, Sizing, SizingStrength, Creases, CreaseAngle,
+/// VerticesOnSurface,
+/// FillHoles, SubdivideCoarse, CoarseMap, then the parameterization options.
 void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& defaults);
 capmesh_v1_remesh_options readRemeshOptions(const RichParameterList& list);
 

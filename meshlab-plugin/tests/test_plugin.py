@@ -53,7 +53,8 @@ def test_filters_are_registered_with_capmesh_defaults(plugin, mesh_file):
     assert remesh["relaxiterations"] == 40 and remesh["polishiterations"] == 85 and remesh["areasteps"] == 6
     assert remesh["shapeweight"] == pytest.approx(0.13) and remesh["resample"]
     assert remesh["sizing"] == 0 and remesh["sizingstrength"] == 3.0  # uniform; curvature's strength
-    assert not remesh["keepcreases"] and not remesh["verticesonsurface"]
+    assert remesh["creases"] == 0 and not remesh["verticesonsurface"]  # auto: with curvature sizing
+    assert remesh["polishtolerance"] == pytest.approx(1e-3) and remesh["creaseangle"] == pytest.approx(60.0)
     assert not remesh["fillholes"] and remesh["subdividecoarse"] and remesh["coarsemap"]
     assert ms.filter_parameter_values("capmesh_harmonics_reconstruction")["order"] > 0
 
@@ -169,6 +170,10 @@ def test_default_shape_and_area_remesh_has_few_thin_faces(plugin, mesh_file):
     ms = load(mesh_file, LV_MESH)
     report = ms.apply_filter("capmesh_remesh", faces=1000, relaxiterations=2, polishiterations=3)
     assert report["shape_iterations"] == 5
+    # A polish tolerance of 0 runs every polish iteration.
+    ms = load(mesh_file, LV_MESH)
+    report = ms.apply_filter("capmesh_remesh", faces=1000, relaxiterations=4, polishiterations=40, polishtolerance=0.0)
+    assert report["shape_iterations"] == 44
 
 
 def test_lat_long_remesh_has_the_grid_counts(plugin, mesh_file):
@@ -288,6 +293,10 @@ def test_bad_parameter_is_refused(plugin, mesh_file):
     assert r["meshes"] == 1
     r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", polishiterations=-1)
     assert r["raised"] and "PolishIterations must be a non-negative integer" in r["message"]
+    r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", creaseangle=0.0)
+    assert r["raised"] and "crease_deg = 0 is not an angle" in r["message"]
+    r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", polishtolerance=-1.0)
+    assert r["raised"] and "PolishTolerance must be >= 0" in r["message"]
     r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", shapeweight=-1.0)
     assert r["raised"] and "(invalid argument): shape_weight = -1 is negative" in r["message"]
     r = failing_call(plugin, mesh_file(OPEN_MESH), "capmesh_remesh", sizing="curvature", sizingstrength=-2.0)

@@ -140,7 +140,9 @@ def remesh(vertices, faces, faces_target: int = 5000, lat_long: Optional[Tuple[i
     ``(vertices, faces, report)``. Options: those of :func:`parameterize` and
     area_equalization, optimize, relax_iterations, polish_iterations, polish_tolerance, area_steps,
     shape_weight, no_resample, sizing ("uniform", the default, "surface" or "curvature[=S]"),
-    keep_creases (``--keep-creases``, default False), placement ("fitted", the default, or
+    creases ("auto", the default: kept with curvature sizing, "keep" or "off": ``--creases``),
+    keep_creases (``--keep-creases``: True is creases="keep"), crease_angle (``--crease-angle``,
+    degrees, default 60), placement ("fitted", the default, or
     "on-surface": ``--placement``), fill_holes (``--fill-holes``, default False), no_subdivide
     (``--no-subdivide``, default False: an input with fewer faces than asked is mapped subdivided),
     fine_map (``--fine-map``, default False: with the shape stage, a closed input of many more

@@ -25,7 +25,7 @@ pub const MAP_OPTIONS: [&str; 10] = [
     "coarse_vertices",
 ];
 /// The options of `remesh` only.
-pub const REMESH_OPTIONS: [&str; 14] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "polish_tolerance", "area_steps", "shape_weight", "no_resample", "sizing", "keep_creases", "placement", "fill_holes", "no_subdivide", "fine_map"];
+pub const REMESH_OPTIONS: [&str; 16] = ["area_equalization", "optimize", "relax_iterations", "polish_iterations", "polish_tolerance", "area_steps", "shape_weight", "no_resample", "sizing", "creases", "keep_creases", "crease_angle", "placement", "fill_holes", "no_subdivide", "fine_map"];
 
 fn parsed<T: std::str::FromStr<Err = String>>(value: &Bound<'_, PyAny>) -> PyResult<T> {
     let text: String = value.str()?.extract()?;
@@ -95,7 +95,17 @@ pub fn remesh(grid: capmesh::CapGrid, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
             "shape_weight" => options.shape = options.shape.clone().with_shape_weight(number(&name, &value)?),
             "no_resample" => options.shape = options.shape.clone().with_resample(!number::<bool>(&name, &value)?),
             "sizing" => options.shape = options.shape.clone().with_sizing(parsed::<capmesh::Sizing>(&value)?),
-            "keep_creases" => options.shape = options.shape.clone().with_keep_creases(number::<bool>(&name, &value)?),
+            "crease_angle" => match number::<f64>(&name, &value)? {
+                deg if deg > 0.0 && deg < 180.0 => options.shape = options.shape.clone().with_crease_deg(deg),
+                deg => return Err(input(format!("crease_angle = {deg} is not an angle in degrees strictly between 0 and 180"))),
+            },
+            "creases" => options.shape = options.shape.clone().with_creases(parsed::<capmesh::Creases>(&value)?),
+            // The CLI's --keep-creases: True is creases="keep", False leaves the default.
+            "keep_creases" => {
+                if number::<bool>(&name, &value)? {
+                    options.shape = options.shape.clone().with_creases(capmesh::Creases::Keep);
+                }
+            }
             "placement" => options.placement = parsed::<capmesh::Placement>(&value)?,
             "fill_holes" => options.holes = if number::<bool>(&name, &value)? { capmesh::Holes::Fill } else { capmesh::Holes::Keep },
             "no_subdivide" => options.subdivide_coarse = !number::<bool>(&name, &value)?,

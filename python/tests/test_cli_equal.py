@@ -66,6 +66,22 @@ def test_remesh_equals_cli(cli, tmp_path):
     kv, kf, krep = capmesh.remesh(v, f, faces_target=1000, keep_creases=True)
     assert krep["shape"]["crease_vertices"] == creased["shape"]["crease_vertices"]
     assert krep["quality"]["d_face"] == creased["d_face"]
+    _, _, crep = capmesh.remesh(v, f, faces_target=1000, creases="keep")
+    assert crep["quality"]["d_face"] == creased["d_face"] and crep["shape"]["keep_creases"]
+    # Curvature sizing keeps creases unless creases="off" (the CLI's --creases off).
+    _, _, auto = capmesh.remesh(v, f, faces_target=1000, sizing="curvature")
+    _, _, off = capmesh.remesh(v, f, faces_target=1000, sizing="curvature", creases="off")
+    assert auto["shape"]["keep_creases"] and auto["shape"]["crease_bound_deg"] == 60.0
+    assert not off["shape"]["keep_creases"] and off["shape"]["crease_vertices"] == 0
+    done = cli("remesh", OPEN_MESH, "-o", out, "--faces", 1000, "--report", report, "--quiet", "--sizing", "curvature", "--creases", "off")
+    assert done.returncode == 0, done.stderr
+    assert json.loads(report.read_text())["d_face"] == off["quality"]["d_face"]
+    with pytest.raises(capmesh.InputError, match="unknown crease handling"):
+        capmesh.remesh(v, f, faces_target=1000, creases="sharp")
+    _, _, bent = capmesh.remesh(v, f, faces_target=1000, sizing="curvature", crease_angle=45)
+    assert bent["shape"]["crease_bound_deg"] == 45.0
+    with pytest.raises(capmesh.InputError, match="crease_angle = 200"):
+        capmesh.remesh(v, f, faces_target=1000, crease_angle=200)
     cli_v, cli_f = capmesh.read_mesh(out)
 
     # metrics() is `capmesh metrics --json`.

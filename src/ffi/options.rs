@@ -6,7 +6,7 @@ use crate::cap::Domain;
 use crate::param::ParamOptions;
 use crate::refine::Smoothing;
 use crate::flatten::closed::DEFAULT_LAMBDA;
-use crate::remesh::shape::ShapeOptions;
+use crate::remesh::shape::{Creases, ShapeOptions};
 use crate::remesh::sizing::{Sizing, DEFAULT_CURVATURE_STRENGTH};
 use crate::remesh::{CapGrid, Holes, Optimize, Placement, RemeshOptions, DEFAULT_AREA_EQUALIZATION};
 
@@ -51,6 +51,15 @@ pub const CAPMESH_V1_PLACEMENT_FITTED: i32 = 0;
 /// `capmesh_v1_remesh_options.placement`: the vertices on the input surface, where the inverse
 /// map puts them (the CLI's `--placement on-surface`).
 pub const CAPMESH_V1_PLACEMENT_ON_SURFACE: i32 = 1;
+
+/// `capmesh_v1_remesh_options.creases`: vertices on the input's creases with curvature
+/// sizing only (default; the CLI's `--creases auto`).
+pub const CAPMESH_V1_CREASES_AUTO: i32 = 0;
+/// `capmesh_v1_remesh_options.creases`: vertices on the input's creases, joined by edges (the
+/// CLI's `--creases keep`).
+pub const CAPMESH_V1_CREASES_KEEP: i32 = 1;
+/// `capmesh_v1_remesh_options.creases`: creases not kept (the CLI's `--creases off`).
+pub const CAPMESH_V1_CREASES_OFF: i32 = 2;
 
 /// `capmesh_v1_remesh_options.sizing`: equal face areas (default; the CLI's `--sizing
 /// uniform`).
@@ -132,9 +141,12 @@ pub struct capmesh_v1_remesh_options {
     /// Global area steps of the polish (Gauss-Newton steps of the area term over all vertices
     /// at once, one every 5 polish iterations from the first; 0 = none). Default 6.
     pub area_steps: u32,
-    /// 1 = put vertices on the input's creases and join them by edges (the CLI's
-    /// `--keep-creases`); 0 = off (default).
-    pub keep_creases: i32,
+    /// One of `CAPMESH_V1_CREASES_*`: whether vertices are put on the input's creases and
+    /// joined by edges. Default auto (0): with `CAPMESH_V1_SIZING_CURVATURE` only.
+    pub creases: i32,
+    /// The crease bound in degrees, in (0, 180): input edges bent more are creases, and no
+    /// edge flip bends a pair of faces more (the CLI's `--crease-angle`). Default 60.
+    pub crease_deg: f64,
     /// One of `CAPMESH_V1_PLACEMENT_*`: where the vertices are put at the end. Default fitted
     /// (0).
     pub placement: i32,
@@ -152,6 +164,10 @@ pub struct capmesh_v1_remesh_options {
     /// `param.multilevel_above` and `param.coarse_vertices` say, as `capmesh_v1_parameterize`
     /// does (the CLI's `--fine-map`; always so without the shape stage).
     pub coarse_map: i32,
+    /// The polish stops early, after its global area steps, once an iteration flips no edge
+    /// and moves the vertices by less than this root mean square, in edge lengths; finite and
+    /// >= 0 (0 = every polish iteration runs). Default 0.001.
+    pub polish_tolerance: f64,
 }
 
 /// The defaults documented on each field.
@@ -195,7 +211,12 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
             Sizing::Curvature { strength } => strength,
             _ => DEFAULT_CURVATURE_STRENGTH,
         },
-        keep_creases: i32::from(shape.keep_creases),
+        creases: match shape.creases {
+            Creases::Auto => CAPMESH_V1_CREASES_AUTO,
+            Creases::Keep => CAPMESH_V1_CREASES_KEEP,
+            Creases::Off => CAPMESH_V1_CREASES_OFF,
+        },
+        crease_deg: shape.crease_deg,
         placement: match crate::remesh::Placement::default() {
             Placement::Fitted => CAPMESH_V1_PLACEMENT_FITTED,
             Placement::OnSurface => CAPMESH_V1_PLACEMENT_ON_SURFACE,
@@ -203,6 +224,7 @@ pub extern "C" fn capmesh_v1_remesh_options_default() -> capmesh_v1_remesh_optio
         fill_holes: i32::from(Holes::default() == Holes::Fill),
         subdivide_coarse: i32::from(RemeshOptions::default().subdivide_coarse),
         coarse_map: i32::from(RemeshOptions::default().coarse_map),
+        polish_tolerance: shape.polish_tolerance,
     }
 }
 
@@ -291,11 +313,20 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         1 => true,
         r => return Err(Failure::invalid_argument(format!("resample = {r} is not 0 (off) or 1 (on)"))),
     };
-    let keep_creases = match o.keep_creases {
-        0 => false,
-        1 => true,
-        k => return Err(Failure::invalid_argument(format!("keep_creases = {k} is not 0 (off) or 1 (on)"))),
+    let creases = match o.creases {
+        CAPMESH_V1_CREASES_AUTO => Creases::Auto,
+        CAPMESH_V1_CREASES_KEEP => Creases::Keep,
+        CAPMESH_V1_CREASES_OFF => Creases::Off,
+        c => return Err(Failure::invalid_argument(format!("creases = {c} is not 0 (auto), 1 (keep) or 2 (off)"))),
     };
+    let crease_deg = finite("crease_deg", o.crease_deg)?;
+    if !(crease_deg > 0.0 && crease_deg < 180.0) {
+        return Err(Failure::invalid_argument(format!("crease_deg = {crease_deg} is not an angle in degrees strictly between 0 and 180")));
+    }
+    let polish_tolerance = finite("polish_tolerance", o.polish_tolerance)?;
+    if polish_tolerance < 0.0 {
+        return Err(Failure::invalid_argument(format!("polish_tolerance = {polish_tolerance} is negative (0: every polish iteration runs)")));
+    }
     let placement = match o.placement {
         CAPMESH_V1_PLACEMENT_FITTED => Placement::Fitted,
         CAPMESH_V1_PLACEMENT_ON_SURFACE => Placement::OnSurface,
@@ -332,7 +363,9 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         .with_area_steps(o.area_steps as usize)
         .with_shape_weight(shape_weight)
         .with_resample(resample)
-        .with_keep_creases(keep_creases);
+        .with_polish_tolerance(polish_tolerance)
+        .with_creases(creases)
+        .with_crease_deg(crease_deg);
     Ok(RemeshOptions {
         grid,
         param: param_options(&o.param)?,

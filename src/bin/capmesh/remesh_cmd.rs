@@ -73,11 +73,19 @@ pub struct RemeshArgs {
     /// collapses in the shape stage (they are on by default and give better angles).
     #[arg(long)]
     pub no_resample: bool,
-    /// Put vertices on the input's creases (edges bent by more than 60 degrees, in chains
-    /// of at least 3 edge lengths) and join them by edges: a lower surface distance on
-    /// surfaces with sharp edges, worse angles on staircased segmentations. Off by default.
-    #[arg(long)]
+    /// Creases: auto (the default: kept with --sizing curvature, not otherwise), keep or off.
+    /// Kept, vertices are put on the input's creases (edges bent by more than --crease-angle,
+    /// in chains of at least 3 edge lengths) and joined by edges: a lower surface distance on
+    /// surfaces with sharp edges, worse angles on staircased segmentations.
+    #[arg(long, default_value = "auto")]
+    pub creases: capmesh::Creases,
+    /// The same as --creases keep.
+    #[arg(long, conflicts_with = "creases")]
     pub keep_creases: bool,
+    /// The crease bound in degrees, in (0, 180): input edges bent more are creases (kept
+    /// with --creases), and no edge flip bends a pair of faces more.
+    #[arg(long, value_parser = crease_angle, default_value_t = capmesh::remesh::shape::DEFAULT_CREASE_DEG)]
+    pub crease_angle: f64,
     /// Of an input in several pieces, remesh the largest whatever the others hold (by
     /// default only specks of at most 1% of the area are dropped, larger pieces refused).
     #[arg(long)]
@@ -171,7 +179,9 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         area_steps,
         shape_weight,
         no_resample,
+        creases,
         keep_creases,
+        crease_angle,
         largest_piece,
         fill_holes,
         no_subdivide,
@@ -193,7 +203,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
     let read_seconds = t_read.elapsed().as_secs_f64();
     let bar = cli_progress::Bar::new(quiet);
     let grid = if lat_long { CapGrid::LatLong { rings, sectors } } else { CapGrid::Uniform { faces } };
-    let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_polish_tolerance(polish_tolerance).with_area_steps(area_steps).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing).with_keep_creases(keep_creases);
+    let shape = capmesh::remesh::shape::ShapeOptions::default().with_relax_iterations(relax_iterations).with_polish_iterations(polish_iterations).with_polish_tolerance(polish_tolerance).with_area_steps(area_steps).with_shape_weight(shape_weight).with_resample(!no_resample).with_sizing(sizing).with_creases(if keep_creases { capmesh::Creases::Keep } else { creases }).with_crease_deg(crease_angle);
     let mut options = RemeshOptions::default().with_grid(grid).with_area_equalization(area_equalization).with_optimize(optimize).with_shape(shape).with_placement(placement).with_subdivide_coarse(!no_subdivide).with_coarse_map(!fine_map);
     if largest_piece {
         options = options.with_pieces(capmesh::Pieces::Largest);
@@ -318,4 +328,12 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
         figures_arg::done(capmesh::figures::remesh_figures(&dir, &figures_arg::name(&input), &m, &out, &rep, &Default::default()))?;
     }
     refuse_poor(&input, &rep.param, map.allow_poor_map)
+}
+
+/// `--crease-angle`: degrees strictly between 0 and 180.
+fn crease_angle(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(deg) if deg > 0.0 && deg < 180.0 => Ok(deg),
+        _ => Err(format!("{s:?} is not an angle in degrees strictly between 0 and 180")),
+    }
 }

@@ -46,7 +46,7 @@ pub(crate) mod state;
 pub(crate) mod uncross;
 pub(crate) mod worst;
 
-pub use options::{ShapeOptions, COVERED_SHAPE_WEIGHT, DEFAULT_POLISH_TOLERANCE, DEFAULT_SHAPE_WEIGHT};
+pub use options::{Creases, ShapeOptions, COVERED_SHAPE_WEIGHT, DEFAULT_CREASE_DEG, DEFAULT_POLISH_TOLERANCE, DEFAULT_SHAPE_WEIGHT};
 pub use report::{ShapeReport, Start};
 pub use uncross::UncrossReport;
 
@@ -133,7 +133,7 @@ pub(crate) fn optimize_shape(
 ) -> Shaped {
     let n = plane.len();
     let before = crate::metrics::angles::angle_quality_of(position, &faces);
-    let mut report = ShapeReport { before, after: before, sizing: options.sizing, ..Default::default() };
+    let mut report = ShapeReport { before, after: before, sizing: options.sizing, keep_creases: options.keeps_creases(), crease_bound_deg: options.crease_deg, ..Default::default() };
     let (next, _) = boundary::boundary_cycle(&faces, n);
     let role: Vec<Role> = (0..n)
         .map(|v| {
@@ -172,7 +172,7 @@ pub(crate) fn optimize_shape(
     let mut cycle: Option<(Vec<u32>, Vec<u32>)> = None;
     let mut flipper: Option<flips::Flipper> = None;
     let mut area_solver = crate::linalg::SpdSolver::new();
-    let snap_creases = options.keep_creases;
+    let snap_creases = options.keeps_creases();
     let mut creases: Option<crease::CreaseSnap> = None;
     for it in 0..lloyd + options.polish_iterations {
         // Creases once the resampling is over (vertex numbers stay from then on).

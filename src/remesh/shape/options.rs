@@ -36,24 +36,44 @@ pub struct ShapeOptions {
     /// Sweeps of the pure-area equalization after the shape stage. Default 0: they lowered the
     /// mean smallest angle by 2-3 degrees for the area the polish gains as well.
     pub area_sweeps: usize,
-    /// Largest angle (degrees) between the normals of the two faces of a flipped edge after
-    /// the flip, unless the old pair was bent more: sharper edges are creases and are kept.
-    /// Default 60.
+    /// The crease bound (degrees): the largest angle between the normals of the two faces of
+    /// a flipped edge after the flip, unless the old pair was bent more (sharper edges are
+    /// creases and are kept), and the bend of the input edges [`ShapeOptions::creases`] puts
+    /// vertices on. Default [`DEFAULT_CREASE_DEG`].
     pub crease_deg: f64,
     /// Face sizing (`remesh::sizing`): uniform (the default), surface or curvature-adapted.
     /// A sized remesh measures its faces by the surface they cover rather than by their
     /// chords (docs/method.md section 19, "Covered areas").
     pub sizing: crate::remesh::sizing::Sizing,
-    /// Put vertices on the input's creases (edges bent by more than `crease_deg`, in chains
-    /// of at least 3 edge lengths) and join them by edges (`crease`). Default off: it more
-    /// than halved the lung lobe's sampled distance, but a segmentation remeshed finer than
-    /// its steps takes the steps for creases (docs/method.md, "21. Creases").
-    pub keep_creases: bool,
+    /// Whether vertices are put on the input's creases (edges bent by more than the crease
+    /// bound, in chains of at least 3 edge lengths) and joined by edges (`crease`). Default
+    /// [`Creases::Auto`]: with curvature sizing only (docs/method.md, "21. Creases").
+    pub creases: Creases,
 }
+
+/// Whether the shape stage puts vertices on the input's creases ([`ShapeOptions::creases`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub enum Creases {
+    /// Kept by a curvature-sized remesh (fidelity is what it is for: lower or equal surface
+    /// distances on all eleven shared meshes), not by the others (the default).
+    #[default]
+    #[serde(rename = "auto")]
+    Auto,
+    /// Kept: a lower surface distance on surfaces with sharp edges (the lung lobe's more than
+    /// halved at uniform sizing), worse angles where a segmentation's steps are taken for
+    /// creases.
+    #[serde(rename = "keep")]
+    Keep,
+    /// Not kept.
+    #[serde(rename = "off")]
+    Off,
+}
+
+crate::named::named_enum!(Creases, "crease handling", Auto => "auto", Keep => "keep", Off => "off");
 
 impl Default for ShapeOptions {
     fn default() -> Self {
-        Self { relax_iterations: 40, polish_iterations: 85, polish_tolerance: DEFAULT_POLISH_TOLERANCE, area_steps: 6, resample: true, shape_weight: DEFAULT_SHAPE_WEIGHT, area_sweeps: 0, crease_deg: 60.0, sizing: crate::remesh::sizing::Sizing::Uniform, keep_creases: false }
+        Self { relax_iterations: 40, polish_iterations: 85, polish_tolerance: DEFAULT_POLISH_TOLERANCE, area_steps: 6, resample: true, shape_weight: DEFAULT_SHAPE_WEIGHT, area_sweeps: 0, crease_deg: DEFAULT_CREASE_DEG, sizing: crate::remesh::sizing::Sizing::Uniform, creases: Creases::Auto }
     }
 }
 
@@ -98,9 +118,9 @@ impl ShapeOptions {
         self.sizing = sizing;
         self
     }
-    /// Set [`ShapeOptions::keep_creases`].
-    pub fn with_keep_creases(mut self, on: bool) -> Self {
-        self.keep_creases = on;
+    /// Set [`ShapeOptions::creases`].
+    pub fn with_creases(mut self, creases: Creases) -> Self {
+        self.creases = creases;
         self
     }
     /// Set [`ShapeOptions::crease_deg`].
@@ -108,7 +128,22 @@ impl ShapeOptions {
         self.crease_deg = deg;
         self
     }
+    /// Whether the stage puts vertices on the input's creases: [`Creases::Auto`] does with
+    /// curvature sizing.
+    pub fn keeps_creases(&self) -> bool {
+        match self.creases {
+            Creases::Auto => matches!(self.sizing, crate::remesh::sizing::Sizing::Curvature { .. }),
+            Creases::Keep => true,
+            Creases::Off => false,
+        }
+    }
 }
+
+/// The default crease bound ([`ShapeOptions::crease_deg`]): flips that would bend a pair of
+/// faces more are refused, and kept creases are input edges bent more. Curvature sizing keeps
+/// it: at 45 degrees the bunny's and the lung lobe's distances fell by 3-5% but two FreeSurfer
+/// cortices' rose by 3-5% (docs/method.md section 21, "Curvature sizing keeps creases").
+pub const DEFAULT_CREASE_DEG: f64 = 60.0;
 
 /// The default [`ShapeOptions::polish_tolerance`]: a thousandth of an edge. On the shared
 /// meshes the polish then stops 20 to 40 iterations early on 8 of the 11 and their figures

@@ -54,7 +54,11 @@ pub struct ShapeReport {
     pub area_steps: usize,
     /// Boundary vertices put on the input's corners.
     pub corners_kept: usize,
-    /// Vertices put on the input's creases (`crease`, with [`super::ShapeOptions::keep_creases`]).
+    /// Whether creases were kept ([`super::ShapeOptions::keeps_creases`]).
+    pub keep_creases: bool,
+    /// The crease bound used, in degrees ([`super::ShapeOptions::crease_deg`]).
+    pub crease_bound_deg: f64,
+    /// Vertices put on the input's creases (`crease`, when creases are kept).
     pub crease_vertices: usize,
     /// Pairs of consecutive crease points joined by a remesh edge at the end of the stage.
     pub crease_edges: usize,

@@ -1,4 +1,5 @@
-//! Creases of the input kept by the remesh (ours, with `--keep-creases`; the paper pulls the
+//! Creases of the input kept by the remesh (ours, with `--creases keep`, and by default with
+//! `--sizing curvature`; the paper pulls the
 //! cap mesh back as is, Sec. 4.2): remesh vertices put on the input's sharp edges and joined
 //! along them, as isotropic remeshers with feature edges do. See docs/method.md, "21. Creases".
 //!
