@@ -90,7 +90,7 @@ const SIZED_MEAN_ANGLE_DEG: f64 = 46.0;
 /// [`SIZED_MEAN_ANGLE_DEG`] of a sized remesh with vertices on the input's creases (curvature
 /// sizing keeps them by default): the faces beside a crease have a side along it. The lung
 /// lobe's curvature-sized remesh came to 45.7-45.8 degrees from every start and both puncture
-/// ends; at 46 all six were tried, 4.3 times the time, for no better angle.
+/// ends; at 46 all six were tried, about 4 times the time, for no better angle.
 const CREASED_SIZED_MEAN_ANGLE_DEG: f64 = 45.0;
 
 /// Whether a remesh made by the shape stage meets the bar of [`GOOD_MEAN_ANGLE_DEG`] (or

@@ -117,7 +117,8 @@ pub struct RemeshArgs {
     /// through the map, a uniform vertex density on the surface: folds and thin edges finer
     /// than the faces keep their vertices, a lower distance to the input, less equal face
     /// areas) or curvature[=S] (smaller faces where the surface is curved, density 1 + S k L
-    /// at the same face count; S = 3; faces measured as with surface).
+    /// at the same face count; S = 3; faces measured as with surface; creases kept unless
+    /// --creases off).
     #[arg(long, default_value = "uniform")]
     pub sizing: capmesh::Sizing,
     /// Write figures (PNG, SVG) and an index.md linking them into this directory.
