@@ -95,10 +95,10 @@ pub fn remesh(grid: capmesh::CapGrid, kwargs: Option<&Bound<'_, PyDict>>) -> PyR
             "shape_weight" => options.shape = options.shape.clone().with_shape_weight(number(&name, &value)?),
             "no_resample" => options.shape = options.shape.clone().with_resample(!number::<bool>(&name, &value)?),
             "sizing" => options.shape = options.shape.clone().with_sizing(parsed::<capmesh::Sizing>(&value)?),
-            "crease_angle" => match number::<f64>(&name, &value)? {
-                deg if deg > 0.0 && deg < 180.0 => options.shape = options.shape.clone().with_crease_deg(deg),
-                deg => return Err(input(format!("crease_angle = {deg} is not an angle in degrees strictly between 0 and 180"))),
-            },
+            "crease_angle" => {
+                let deg = capmesh::ShapeOptions::checked_crease_deg(number(&name, &value)?).map_err(|e| input(format!("{name} = {e}")))?;
+                options.shape = options.shape.clone().with_crease_deg(deg);
+            }
             "creases" => options.shape = options.shape.clone().with_creases(parsed::<capmesh::Creases>(&value)?),
             // The CLI's --keep-creases: True is creases="keep", False leaves the default.
             "keep_creases" => {

@@ -319,10 +319,7 @@ pub(crate) fn remesh_options(o: &capmesh_v1_remesh_options) -> Result<RemeshOpti
         CAPMESH_V1_CREASES_OFF => Creases::Off,
         c => return Err(Failure::invalid_argument(format!("creases = {c} is not 0 (auto), 1 (keep) or 2 (off)"))),
     };
-    let crease_deg = finite("crease_deg", o.crease_deg)?;
-    if !(crease_deg > 0.0 && crease_deg < 180.0) {
-        return Err(Failure::invalid_argument(format!("crease_deg = {crease_deg} is not an angle in degrees strictly between 0 and 180")));
-    }
+    let crease_deg = ShapeOptions::checked_crease_deg(o.crease_deg).map_err(|e| Failure::invalid_argument(format!("crease_deg = {e}")))?;
     let polish_tolerance = finite("polish_tolerance", o.polish_tolerance)?;
     if polish_tolerance < 0.0 {
         return Err(Failure::invalid_argument(format!("polish_tolerance = {polish_tolerance} is negative (0: every polish iteration runs)")));

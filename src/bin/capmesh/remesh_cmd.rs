@@ -333,8 +333,6 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
 
 /// `--crease-angle`: degrees strictly between 0 and 180.
 fn crease_angle(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(deg) if deg > 0.0 && deg < 180.0 => Ok(deg),
-        _ => Err(format!("{s:?} is not an angle in degrees strictly between 0 and 180")),
-    }
+    let deg = s.parse::<f64>().map_err(|_| format!("{s:?} is not a number of degrees"))?;
+    capmesh::ShapeOptions::checked_crease_deg(deg)
 }

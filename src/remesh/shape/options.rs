@@ -128,6 +128,16 @@ impl ShapeOptions {
         self.crease_deg = deg;
         self
     }
+    /// `deg` when it is a crease bound [`ShapeOptions::crease_deg`] can take (degrees strictly
+    /// between 0 and 180), else the reason it is not: the command line, the C ABI and Python
+    /// check their value with it.
+    pub fn checked_crease_deg(deg: f64) -> Result<f64, String> {
+        if deg > 0.0 && deg < 180.0 {
+            Ok(deg)
+        } else {
+            Err(format!("{deg} is not an angle in degrees strictly between 0 and 180"))
+        }
+    }
     /// Whether the stage puts vertices on the input's creases: [`Creases::Auto`] does with
     /// curvature sizing.
     pub fn keeps_creases(&self) -> bool {
