@@ -339,6 +339,20 @@ fn huge_cap_meshes_are_refused_before_any_work() {
 }
 
 #[test]
+fn shape_options_out_of_range_are_refused_before_any_work() {
+    // A NaN shape weight or polish tolerance used to give a remesh without a word.
+    let dir = TempDir::new("cli-shape-options");
+    let input = data("open_meg_helmet_babysquid_mne.obj.gz");
+    for (arg, named) in [("--shape-weight=nan", "shape_weight = NaN"), ("--shape-weight=-1", "shape_weight = -1"), ("--polish-tolerance=inf", "polish_tolerance = inf")] {
+        let out = capmesh().args(["remesh", "--quiet"]).arg(&input).arg("-o").arg(dir.join("r.ply")).arg(arg).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{arg} accepted");
+        assert!(stderr.contains(named) && stderr.contains("open_meg_helmet"), "{arg}: {stderr}");
+        assert!(!dir.join("r.ply").exists());
+    }
+}
+
+#[test]
 fn fixed_radii_outside_the_search_range_are_refused() {
     // radius=1000 used to give ten folded faces and mean |d_area| 0.58 without a word.
     let dir = TempDir::new("cli-radius");

@@ -500,3 +500,29 @@ fn the_polish_stops_once_converged() {
     assert!((shape.relax_iterations + 5 * shape.area_steps..full.shape.iterations).contains(&early.shape.iterations), "{} iterations", early.shape.iterations);
     assert!(e.d_face_relative <= 1.1 * f.d_face_relative && (e.mean_min_angle_deg - f.mean_min_angle_deg).abs() < 0.3, "{e:?} against {f:?}");
 }
+
+/// Shape options out of range set from Rust are refused by `remesh` with the field named,
+/// before any work: a NaN crease bound used to find no crease and refuse no flip, silently.
+#[test]
+fn shape_options_out_of_range_are_refused() {
+    use capmesh::remesh::shape::ShapeOptions;
+    use capmesh::{Error, Sizing};
+    let mesh = load("open_meg_helmet_babysquid_mne.obj.gz");
+    let default = ShapeOptions::default();
+    assert_eq!(default.check(), Ok(()));
+    for (shape, named) in [
+        (default.with_crease_deg(f64::NAN), "crease_deg = NaN"),
+        (default.with_crease_deg(180.0), "crease_deg = 180"),
+        (default.with_shape_weight(f64::INFINITY), "shape_weight = inf"),
+        (default.with_polish_tolerance(f64::NAN), "polish_tolerance = NaN"),
+        (default.with_sizing(Sizing::Curvature { strength: -2.0 }), "strength = -2"),
+    ] {
+        let options = RemeshOptions::default().with_shape(shape);
+        match remesh(&mesh, &options, &NoProgress) {
+            Err(Error::InvalidOption(message)) => assert!(message.contains(named), "{named}: {message}"),
+            other => panic!("{named}: {:?}", other.map(|(_, r)| r.quality.faces)),
+        }
+    }
+    // The negative tolerance the docs allow (every polish iteration runs) passes.
+    assert_eq!(default.with_polish_tolerance(-1.0).check(), Ok(()));
+}

@@ -82,6 +82,9 @@ def test_remesh_equals_cli(cli, tmp_path):
     assert bent["shape"]["crease_bound_deg"] == 45.0
     with pytest.raises(capmesh.InputError, match="crease_angle = 200"):
         capmesh.remesh(v, f, faces_target=1000, crease_angle=200)
+    # The library refuses a shape option out of range, whatever sets it.
+    with pytest.raises(capmesh.InputError, match="shape_weight = NaN"):
+        capmesh.remesh(v, f, faces_target=1000, shape_weight=float("nan"))
     cli_v, cli_f = capmesh.read_mesh(out)
 
     # metrics() is `capmesh metrics --json`.

@@ -68,7 +68,7 @@ pub fn parameterize(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progr
 
 /// [`parameterize`] on the current thread.
 fn parameterize_with_fallbacks(mesh: &TriMesh, options: &ParamOptions, progress: &dyn Progress) -> Result<CapMap, Error> {
-    options.domain.check().map_err(Error::InvalidOption)?;
+    options.check().map_err(Error::InvalidOption)?;
     let start = Instant::now();
     progress::check(progress, Stage::Validate, 0.0, "checking the mesh")?;
     let prepared = prepare(mesh, options)?;

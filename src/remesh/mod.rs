@@ -190,6 +190,7 @@ fn other_end(map: &CapMap) -> Option<PunctureEnd> {
 /// before all of these; a point in a hole names the input face across the hole's rim
 /// ([`FilledHoles::on_input`](crate::mesh::holes::FilledHoles::on_input)).
 fn remesh_here(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
+    options.check().map_err(Error::InvalidOption)?;
     // Holes are filled first (a manifold input's): the repairs below then renumber the filled
     // surface's faces, and its points go back to the input's at the end.
     let filled = if options.holes == Holes::Fill { crate::mesh::holes::fill_holes(mesh) } else { None };

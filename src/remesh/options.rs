@@ -206,6 +206,14 @@ impl RemeshOptions {
         self
     }
 
+    /// `Ok` unless an option is out of its range ([`ParamOptions::check`],
+    /// [`shape::ShapeOptions::check`]), else what is wrong with which: what
+    /// [`remesh`](super::remesh) checks before it looks at the mesh.
+    pub fn check(&self) -> Result<(), String> {
+        self.param.check()?;
+        self.shape.check()
+    }
+
     /// Set whether a fine closed input is mapped through a copy sized to the remesh
     /// ([`RemeshOptions::coarse_map`]).
     pub fn with_coarse_map(mut self, on: bool) -> Self {

@@ -3,6 +3,7 @@
 //! and the refinement after the transport ([`refinement`]), with their defaults and why they
 //! are what they are (departures from the paper: docs/method.md).
 
+mod check;
 pub(crate) mod closed;
 pub(crate) mod open;
 pub(crate) mod refinement;

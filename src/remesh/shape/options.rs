@@ -138,6 +138,26 @@ impl ShapeOptions {
             Err(format!("{deg} is not an angle in degrees strictly between 0 and 180"))
         }
     }
+    /// `Ok` unless a field is out of its range, else the field, its value and the range: the
+    /// shape weight a finite number >= 0, the polish tolerance a number (not NaN, not
+    /// infinite), the crease bound as [`ShapeOptions::checked_crease_deg`] says, a curvature
+    /// sizing's strength finite and > 0. [`remesh`](crate::remesh::remesh) refuses options
+    /// that fail it: a NaN weight or bound would otherwise give a remesh silently unshaped.
+    pub fn check(&self) -> Result<(), String> {
+        if !(self.shape_weight.is_finite() && self.shape_weight >= 0.0) {
+            return Err(format!("shape_weight = {} is not a finite number >= 0", self.shape_weight));
+        }
+        if !self.polish_tolerance.is_finite() {
+            return Err(format!("polish_tolerance = {} is not a finite number (0 or less: every polish iteration runs)", self.polish_tolerance));
+        }
+        Self::checked_crease_deg(self.crease_deg).map_err(|e| format!("crease_deg = {e}"))?;
+        match self.sizing {
+            crate::remesh::sizing::Sizing::Curvature { strength } if !(strength.is_finite() && strength > 0.0) => {
+                Err(format!("the curvature sizing's strength = {strength} is not a finite number > 0 (3 by default)"))
+            }
+            _ => Ok(()),
+        }
+    }
     /// Whether the stage puts vertices on the input's creases: [`Creases::Auto`] does with
     /// curvature sizing.
     pub fn keeps_creases(&self) -> bool {
