@@ -821,3 +821,31 @@ fn in_memory_meshes_with_bad_faces_are_refused_by_the_pipeline() {
         }
     }
 }
+
+/// OBJ, OFF and ASCII STL read a vertex's coordinates alike (`io::read_point`): a missing
+/// coordinate, a word and a NaN are each refused with the line named.
+#[test]
+fn vertex_coordinates_are_checked_alike_in_every_text_format() {
+    let dir = TempDir::new("coordinates");
+    let stl = |v: &str| format!("solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n{v}\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n");
+    let off = |v: &str| format!("OFF\n3 1 0\n0 0 0\n{v}\n0 1 0\n3 0 1 2\n");
+    let obj = |v: &str| format!("v 0 0 0\n{v}\nv 0 1 0\nf 1 2 3\n");
+    let cases: [(&str, String, &str); 9] = [
+        ("a.obj", obj("v 1 0"), "line 2"),
+        ("b.obj", obj("v 1 zero 0"), "'zero' is not a number"),
+        ("c.obj", obj("v 1 nan 0"), "line 2"),
+        ("a.off", off("1 0"), "found 2"),
+        ("b.off", off("1 zero 0"), "'zero' is not a number"),
+        ("c.off", off("1 nan 0"), "line 4"),
+        ("a.stl", stl("vertex 1 0"), "found 2"),
+        ("b.stl", stl("vertex 1 zero 0"), "'zero' is not a number"),
+        ("c.stl", stl("vertex 1 nan 0"), "line 5"),
+    ];
+    for (name, text, says) in cases {
+        let err = read_str(&dir, name, &text).unwrap_err();
+        assert!(err.to_string().contains(says), "{name}: {err}");
+        if text.contains("nan") {
+            assert!(matches!(err, ReadError::NonFinite { .. }), "{name}: {err}");
+        }
+    }
+}

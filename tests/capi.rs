@@ -2,43 +2,18 @@
 //! and misuse (NULL pointers, out-of-range indices, wrong counts, bad options) returning error
 //! statuses with a message instead of crashing.
 
+mod common;
+
 use std::ffi::{c_char, c_void, CStr};
-use std::path::Path;
 use std::ptr::{null, null_mut};
 
 use capmesh::ffi::capmesh_v1_status::*;
 use capmesh::ffi::*;
 use capmesh::TriMesh;
+use common::capi::{last_error, Arrays};
 
 fn read(name: &str) -> TriMesh {
-    capmesh::io::read_mesh(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)).unwrap()
-}
-
-/// Flat arrays kept alive while a view points into them.
-struct Arrays {
-    positions: Vec<f64>,
-    triangles: Vec<u32>,
-}
-
-impl Arrays {
-    fn of(mesh: &TriMesh) -> Self {
-        Self {
-            positions: mesh.vertices.iter().flatten().copied().collect(),
-            triangles: mesh.faces.iter().flatten().copied().collect(),
-        }
-    }
-    fn view(&self) -> capmesh_v1_mesh_view {
-        capmesh_v1_mesh_view {
-            positions: self.positions.as_ptr(),
-            vertex_count: self.positions.len() / 3,
-            triangles: self.triangles.as_ptr(),
-            face_count: self.triangles.len() / 3,
-        }
-    }
-}
-
-fn last_error() -> String {
-    unsafe { CStr::from_ptr(capmesh_v1_last_error()) }.to_string_lossy().into_owned()
+    capmesh::io::read_mesh(&common::data(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn take_string(s: *mut c_char) -> String {

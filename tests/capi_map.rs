@@ -11,37 +11,11 @@ use std::ptr::{null, null_mut};
 use capmesh::ffi::capmesh_v1_status::*;
 use capmesh::ffi::*;
 use capmesh::TriMesh;
+use common::capi::{last_error, Arrays};
 use common::data;
 
 fn read(name: &str) -> TriMesh {
     capmesh::io::read_mesh(&data(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
-
-fn last_error() -> String {
-    unsafe { CStr::from_ptr(capmesh_v1_last_error()) }.to_string_lossy().into_owned()
-}
-
-/// Flat arrays kept alive while a view points into them.
-struct Arrays {
-    positions: Vec<f64>,
-    triangles: Vec<u32>,
-}
-
-impl Arrays {
-    fn of(mesh: &TriMesh) -> Self {
-        Self {
-            positions: mesh.vertices.iter().flatten().copied().collect(),
-            triangles: mesh.faces.iter().flatten().copied().collect(),
-        }
-    }
-    fn view(&self) -> capmesh_v1_mesh_view {
-        capmesh_v1_mesh_view {
-            positions: self.positions.as_ptr(),
-            vertex_count: self.positions.len() / 3,
-            triangles: self.triangles.as_ptr(),
-            face_count: self.triangles.len() / 3,
-        }
-    }
 }
 
 /// A map handle of `mesh`, and its report.

@@ -78,21 +78,7 @@ pub unsafe extern "C" fn capmesh_v1_remesh(
     out_mesh: *mut *mut capmesh_v1_mesh,
     out_report_json: *mut *mut c_char,
 ) -> capmesh_v1_status {
-    guard(|| {
-        // SAFETY (all blocks below): pointers as documented by the caller's contract.
-        unsafe { clear_optional_out(out_report_json) };
-        unsafe { clear_out(out_mesh, "out_mesh") }?;
-        let input = unsafe { read_view(mesh, "mesh") }?;
-        let options = match unsafe { options.as_ref() } {
-            Some(o) => remesh_options(o)?,
-            None => remesh_options(&super::options::capmesh_v1_remesh_options_default())?,
-        };
-        let progress = CallbackProgress::new(progress, user_data);
-        let (out, report) = remesh(&input, &options, &progress)?;
-        unsafe { write_report(out_report_json, &report) }?;
-        unsafe { *out_mesh = capmesh_v1_mesh::from_trimesh(&out).into_raw() };
-        Ok(())
-    })
+    unsafe { remesh_entry(mesh, options, progress, user_data, out_mesh, out_report_json, false) }
 }
 
 /// `capmesh_v1_remesh`, also recording where each new vertex lies on the input: the mesh's
@@ -111,6 +97,23 @@ pub unsafe extern "C" fn capmesh_v1_remesh_located(
     out_mesh: *mut *mut capmesh_v1_mesh,
     out_report_json: *mut *mut c_char,
 ) -> capmesh_v1_status {
+    unsafe { remesh_entry(mesh, options, progress, user_data, out_mesh, out_report_json, true) }
+}
+
+/// `capmesh_v1_remesh` and, when `located`, `capmesh_v1_remesh_located` (the new mesh also
+/// carries each vertex's input triangle and barycentric weights).
+///
+/// # Safety
+/// As `capmesh_v1_parameterize`.
+unsafe fn remesh_entry(
+    mesh: *const capmesh_v1_mesh_view,
+    options: *const capmesh_v1_remesh_options,
+    progress: capmesh_v1_progress_fn,
+    user_data: *mut c_void,
+    out_mesh: *mut *mut capmesh_v1_mesh,
+    out_report_json: *mut *mut c_char,
+    located: bool,
+) -> capmesh_v1_status {
     guard(|| {
         // SAFETY (all blocks below): pointers as documented by the caller's contract.
         unsafe { clear_optional_out(out_report_json) };
@@ -121,15 +124,22 @@ pub unsafe extern "C" fn capmesh_v1_remesh_located(
             None => remesh_options(&super::options::capmesh_v1_remesh_options_default())?,
         };
         let progress = CallbackProgress::new(progress, user_data);
-        let (out, report, points) = remesh_located(&input, &options, &progress)?;
-        if points.len() != out.n_vertices() {
+        let (out, report, points) = if located {
+            remesh_located(&input, &options, &progress)?
+        } else {
+            let (out, report) = remesh(&input, &options, &progress)?;
+            (out, report, Vec::new())
+        };
+        if located && points.len() != out.n_vertices() {
             return Err(Failure::new(
                 capmesh_v1_status::CAPMESH_V1_INTERNAL,
                 format!("the remesh located {} of its {} vertices", points.len(), out.n_vertices()),
             ));
         }
         unsafe { write_report(out_report_json, &report) }?;
-        unsafe { *out_mesh = capmesh_v1_mesh::from_trimesh(&out).with_sources(&points).into_raw() };
+        let out = capmesh_v1_mesh::from_trimesh(&out);
+        let out = if located { out.with_sources(&points) } else { out };
+        unsafe { *out_mesh = out.into_raw() };
         Ok(())
     })
 }

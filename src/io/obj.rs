@@ -7,8 +7,8 @@ use std::io::Write;
 use std::path::Path;
 
 use super::error::{Location, ReadError};
-use super::text::{parse_f64, parse_i64, show, strip_comment, tokens, Lines};
-use super::{fan, parse_error};
+use super::text::{parse_i64, show, strip_comment, tokens, Lines};
+use super::{fan, parse_error, read_point};
 use super::VertexProperties;
 use crate::mesh::TriMesh;
 
@@ -25,32 +25,7 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<TriMesh, ReadError> {
         let at = Location::Line(line);
         match toks.next() {
             Some(b"v") => {
-                let mut p = [0.0; 3];
-                for (k, c) in p.iter_mut().enumerate() {
-                    let tok = toks.next().ok_or_else(|| {
-                        parse_error(
-                            path,
-                            at,
-                            format!(
-                                "a 'v' record needs 3 coordinates, found {k}; fix or delete this \
-                                 line"
-                            ),
-                        )
-                    })?;
-                    *c = parse_f64(tok).ok_or_else(|| {
-                        parse_error(
-                            path,
-                            at,
-                            format!("'{}' is not a number; fix this vertex", show(tok)),
-                        )
-                    })?;
-                }
-                if !p.iter().all(|x| x.is_finite()) {
-                    return Err(ReadError::NonFinite {
-                        path: path.to_path_buf(),
-                        at,
-                    });
-                }
+                let p = read_point(&mut toks, path, at, |k| format!("a 'v' record needs 3 coordinates, found {k}; fix or delete this line"))?;
                 if vertices.len() >= u32::MAX as usize {
                     return Err(parse_error(
                         path,

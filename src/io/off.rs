@@ -7,8 +7,8 @@ use std::io::Write;
 use std::path::Path;
 
 use super::error::{Location, ReadError};
-use super::text::{is_blank, parse_f64, parse_i64, show, strip_comment, tokens, Lines};
-use super::{fan, parse_error};
+use super::text::{is_blank, parse_i64, show, strip_comment, tokens, Lines};
+use super::{fan, parse_error, read_point};
 use crate::mesh::TriMesh;
 
 /// Does this token look like an OFF keyword (`OFF`, `COFF`, `STCNOFF`, `4OFF`, `nOFF`, ...)?
@@ -100,28 +100,7 @@ pub(crate) fn read(path: &Path, data: &[u8]) -> Result<TriMesh, ReadError> {
                 found: i as u64,
             });
         };
-        let mut p = [0.0; 3];
-        let mut it = tokens(l);
-        for (k, c) in p.iter_mut().enumerate() {
-            let tok = it.next().ok_or_else(|| {
-                err(
-                    line,
-                    format!("a vertex needs 3 coordinates, found {k}; fix this line"),
-                )
-            })?;
-            *c = parse_f64(tok).ok_or_else(|| {
-                err(
-                    line,
-                    format!("'{}' is not a number; fix this vertex", show(tok)),
-                )
-            })?;
-        }
-        if !p.iter().all(|x| x.is_finite()) {
-            return Err(ReadError::NonFinite {
-                path: path.to_path_buf(),
-                at: Location::Line(line),
-            });
-        }
+        let p = read_point(&mut tokens(l), path, Location::Line(line), |k| format!("a vertex needs 3 coordinates, found {k}; fix this line"))?;
         vertices.push(p);
     }
 

@@ -11,8 +11,8 @@ use std::io::Write;
 use std::path::Path;
 
 use super::error::{Location, ReadError};
-use super::text::{parse_f64, show, tokens, Lines};
-use super::{fan, parse_error};
+use super::text::{show, tokens, Lines};
+use super::{fan, parse_error, read_point};
 use crate::mesh::fasthash::FastMap;
 use crate::mesh::geometry::{cross, norm, sub};
 use crate::mesh::TriMesh;
@@ -164,25 +164,7 @@ fn read_ascii(path: &Path, data: &[u8]) -> Result<TriMesh, ReadError> {
             if facet_start.is_none() {
                 return Err(parse_error(path, at, "'vertex' outside a facet".into()));
             }
-            let mut p = [0.0; 3];
-            for (k, c) in p.iter_mut().enumerate() {
-                let tok = toks.next().ok_or_else(|| {
-                    parse_error(path, at, format!("a vertex needs 3 coordinates, found {k}"))
-                })?;
-                *c = parse_f64(tok).ok_or_else(|| {
-                    parse_error(
-                        path,
-                        at,
-                        format!("'{}' is not a number; fix this vertex", show(tok)),
-                    )
-                })?;
-            }
-            if !p.iter().all(|x| x.is_finite()) {
-                return Err(ReadError::NonFinite {
-                    path: path.to_path_buf(),
-                    at,
-                });
-            }
+            let p = read_point(&mut toks, path, at, |k| format!("a vertex needs 3 coordinates, found {k}"))?;
             corners.push(p);
         } else if is(b"endfacet") {
             if facet_start.take().is_none() {

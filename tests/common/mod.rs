@@ -1,10 +1,12 @@
 //! Helpers shared by the integration tests (`mod common;` in each test file): the test
 //! meshes, temporary directories and a deterministic random number generator here; running
-//! the command line in `cli`, reading its CSV files in `csv`.
+//! the command line in `cli`, reading its CSV files in `csv`, calling the C ABI in `capi`.
 
 // Each test binary uses some of these.
 #![allow(dead_code)]
 
+#[cfg(feature = "capi")]
+pub mod capi;
 pub mod cli;
 pub mod csv;
 
