@@ -27,6 +27,9 @@ on anatomical meshes that are not in the repository").
   and its transport hardest to start (docs/method.md, "2. Logarithmic and stale Newton steps,
   continuation"), and one of a femur's proportions (a shaft 20 times as long as it is wide,
   heads twice as wide: docs/method.md section 13).
+- Two of those bones decimated as users decimate segmentations (pymeshlab's quadric edge
+  collapse to 6000 faces, normals preserved; `_quadric`): their shafts become bands of needles
+  from end to end, which `remesh` splits for the map (docs/method.md section 25, "Long edges").
 Then `capmesh remesh --faces N` runs on each (N = 5000 and 20000 by default) with the default
 options, and the table gives the figures of the issue's bars (the same as benchmarks/variants.py),
 each marked where it misses.
@@ -56,6 +59,9 @@ BRAINSPACE = "0.3.0"
 SURFACES = ["pial_left", "pial_right", "white_left", "white_right", "infl_left", "infl_right"]
 # Synthetic long bones: name -> (shaft half-length, shaft radius, end radius, voxel size).
 LONG_BONES = {"long_bone_a": (4.0, 0.6, 1.3, 0.08), "long_bone_b": (5.0, 0.5, 1.2, 0.07), "long_bone_femur": (8.0, 0.4, 0.8, 0.06)}
+# Long bones also remeshed after a quadric decimation to this many faces.
+QUADRIC_BONES = ["long_bone_b", "long_bone_femur"]
+QUADRIC_FACES = 6000
 
 
 def long_bone(path, half_length, shaft, end, voxel):
@@ -146,8 +152,20 @@ def surfaces(work):
     for name, shape in LONG_BONES.items():
         paths[name] = os.path.join(work, f"{name}.obj")
         long_bone(paths[name], *shape)
+    for name in QUADRIC_BONES:
+        paths[f"{name}_quadric"] = os.path.join(work, f"{name}_quadric.obj")
+        quadric_decimation(paths[name], paths[f"{name}_quadric"], QUADRIC_FACES)
     paths["pymeshlab_bone"] = os.path.join(os.path.dirname(pymeshlab.__file__), "tests", "sample_meshes", "bone.ply")
     return paths
+
+
+def quadric_decimation(source, target, faces):
+    """`source` decimated by pymeshlab's quadric edge collapse to `faces` faces (normals
+    preserved), written to `target`."""
+    ms = pymeshlab.MeshSet()
+    ms.load_new_mesh(source)
+    ms.meshing_decimation_quadric_edge_collapse(targetfacenum=faces, preservenormal=True)
+    ms.save_current_mesh(target)
 
 
 def main():
@@ -163,9 +181,11 @@ def main():
                 out = os.path.join(work, f"{name.split()[0]}_{len(options)}_{faces}.obj")
                 row, r = remesh_row(name, path, out, faces, work, {}, options)
                 if r is not None:
-                    # The map's faces are the input's split 1:4 `subdivided` times (a coarse input).
+                    # The map's faces are the input's split 1:4 `subdivided` times (a coarse input),
+                    # then each split long edge added two faces (one per side; closed surfaces).
                     row["subdivided"] = r.get("subdivided", 0)
-                    row["input_faces"] = r["parameterization"]["n_faces"] // 4 ** row["subdivided"]
+                    row["split_edges"] = r.get("split_edges", 0)
+                    row["input_faces"] = (r["parameterization"]["n_faces"] - 2 * row["split_edges"]) // 4 ** row["subdivided"]
                     row["d_surface_sampled_relative"] = r["d_surface_sampled_relative"]
                     row["map_seconds"] = r["parameterization"]["seconds"]
                     row["lambda"] = (r["parameterization"].get("flatten") or {}).get("lambda")
@@ -183,29 +203,30 @@ def write(rows, args):
         "(downloaded at run time, not committed), both hemispheres, the Conte69 left hemisphere without its medial wall",
         "(an open sheet, BrainSpace's mask), the MNI152 template's brain and head segmented and cut by marching cubes",
         "(`segmentation_surface` in the script, nilearn's wheel; `mni152_head_cut`: the head not padded below, open where",
-        "the volume cuts it, as it is and with `--fill-holes`), three synthetic long bones (marching cubes, `LONG_BONES` in the script)",
-        "and pymeshlab's sample bone (`tests/sample_meshes/bone.ply` of pymeshlab 2025.7.post1), then",
+        "the volume cuts it, as it is and with `--fill-holes`), three synthetic long bones (marching cubes, `LONG_BONES` in the script),",
+        f"two of them decimated to {QUADRIC_FACES} faces by pymeshlab's quadric edge collapse (`_quadric`), and pymeshlab's sample bone (`tests/sample_meshes/bone.ply` of pymeshlab 2025.7.post1), then",
         f"`capmesh remesh SURFACE --faces N` (N = {args.faces.replace(',', ', ')}) with the default options (but where named), timed around the",
         "whole command. Bars of issue 26 (set for 5000 faces): d_face_rel <= 0.035, mean smallest angle >= 48,",
         "<= 2% of faces below 30 degrees, smallest angle >= 15, no more self-intersecting faces than the input;",
         "`misses` names the bars a row misses. d_surf: symmetric face-sampled mean distance over the bounding-box diagonal.",
         "map s: the parameterization's seconds within the command; lambda: the quasi-conformal factor of the initial map",
         "(closed surfaces 0.2, raised by the fallback when the transport stalls; open surfaces' composite map 0.5).",
-        "subdiv: midpoint subdivisions of an input with fewer faces than the remesh, made for its map (docs/method.md section 25).",
+        "subdiv: midpoint subdivisions of an input with fewer faces than the remesh, made for its map; split: its edges longer than",
+        "three times the remesh's split at their midpoints for the map (docs/method.md section 25).",
         "",
         *bar_counts(rows, args.faces),
         "",
-        "| surface | input faces | subdiv | target | faces | d_face_rel | mean min angle | % < 30 deg | min angle | self-x faces (input) | d_surf | mean \\|d_area\\| | lambda | map s | seconds | misses |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
+        "| surface | input faces | subdiv | split | target | faces | d_face_rel | mean min angle | % < 30 deg | min angle | self-x faces (input) | d_surf | mean \\|d_area\\| | lambda | map s | seconds | misses |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
     ]
     write_report(
         "external",
         rows,
         head,
-        lambda r: f"| {r['mesh']} | {r['input_faces']} | {r['subdivided']} | {r['target']} | {bar_cells(r)} | "
+        lambda r: f"| {r['mesh']} | {r['input_faces']} | {r['subdivided']} | {r['split_edges']} | {r['target']} | {bar_cells(r)} | "
         f"{r['d_surface_sampled_relative']:.2e} | {r['mean_abs_area_distortion']:.4f} | {r['lambda'] if r['lambda'] is not None else '-'} | "
         f"{r['map_seconds']:.2f} | {r['seconds']:.2f} | {', '.join(r['misses']) or '-'} |",
-        lambda r: f"| {r['mesh']} | | | {r['target']} | | | | | | | | | | | | exit {r['exit']}: {r['error']} |",
+        lambda r: f"| {r['mesh']} | | | | {r['target']} | | | | | | | | | | | | exit {r['exit']}: {r['error']} |",
     )
 
 

@@ -437,8 +437,9 @@ typedef struct capmesh_v1_remesh_options {
   int32_t fill_holes;
   /**
    * 1 = map an input with fewer faces than the shape+area remesh through a
-   * midpoint-subdivided copy (default: the same surface, better shaped faces where the map
-   * is anisotropic); 0 = map it as it is (the CLI's `--no-subdivide`).
+   * midpoint-subdivided copy, and split its edges longer than three times the remesh's (default:
+   * the same surface, its map resolved at the remesh's scale); 0 = map it as it is (the
+   * CLI's `--no-subdivide`).
    */
   int32_t subdivide_coarse;
   /**

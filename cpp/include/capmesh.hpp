@@ -226,8 +226,9 @@ struct RemeshOptions : capmesh_v1_remesh_options {
     fill_holes = on ? 1 : 0;
     return *this;
   }
-  /// Map an input with fewer faces than the remesh through a midpoint-subdivided copy (true,
-  /// the default) or as it is (false: the CLI's `--no-subdivide`).
+  /// Map an input with fewer faces than the remesh through a midpoint-subdivided copy, and
+  /// split its edges longer than three times the remesh's (true, the default), or map it as it is
+  /// (false: the CLI's `--no-subdivide`).
   RemeshOptions &with_subdivide_coarse(bool on) {
     subdivide_coarse = on ? 1 : 0;
     return *this;

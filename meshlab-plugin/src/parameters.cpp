@@ -157,8 +157,9 @@ void addRemeshOptions(RichParameterList& list, const capmesh_v1_remesh_options& 
 	list.addParam(RichBool(
 		"SubdivideCoarse", d.subdivide_coarse != 0, "Subdivide a coarse input",
 		"Map an input with fewer faces than the remesh through a copy with every face split into "
-		"4 (up to 3 times): the same surface, better shaped faces where the map is anisotropic. "
-		"On by default; off maps the input as it is."));
+		"4 (up to 3 times), and split its edges longer than three times the remesh's (a decimated long "
+		"bone's shaft): the same surface, its map resolved at the remesh's scale. On by default; "
+		"off maps the input as it is."));
 	list.addParam(RichBool(
 		"CoarseMap", d.coarse_map != 0, "Map a fine input at the remesh's detail",
 		"With the shape stage (shape and area, uniform grid), map a closed input of many more "

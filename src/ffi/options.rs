@@ -154,8 +154,9 @@ pub struct capmesh_v1_remesh_options {
     /// surface (the CLI's `--fill-holes`; the remesh is closed); 0 = keep the holes (default).
     pub fill_holes: i32,
     /// 1 = map an input with fewer faces than the shape+area remesh through a
-    /// midpoint-subdivided copy (default: the same surface, better shaped faces where the map
-    /// is anisotropic); 0 = map it as it is (the CLI's `--no-subdivide`).
+    /// midpoint-subdivided copy, and split its edges longer than three times the remesh's (default:
+    /// the same surface, its map resolved at the remesh's scale); 0 = map it as it is (the
+    /// CLI's `--no-subdivide`).
     pub subdivide_coarse: i32,
     /// 1 = with the shape stage (shape and area on the uniform grid), map a closed input of
     /// many more vertices than the remesh needs through a decimated copy of 1.2 times the

@@ -11,6 +11,7 @@ pub(crate) mod decimate;
 pub mod repair;
 pub mod shapes;
 pub mod short_edges;
+pub(crate) mod split_long;
 pub mod subdivide;
 pub mod topology;
 mod trimesh;

@@ -72,6 +72,10 @@ pub struct RemeshReport {
     /// Midpoint subdivisions of the input made for its map ([`subdivision_levels`]; 0: mapped
     /// as it is). The parameterization's counts are the subdivided mesh's.
     pub subdivided: usize,
+    /// Edges of the input (after its subdivisions) longer than [`SPLIT_LONGER_THAN`] of the
+    /// remesh's split at their midpoints for its map (0: none was that long). The
+    /// parameterization's counts are the split mesh's.
+    pub split_edges: usize,
     /// Holes of the input filled ([`Holes::Fill`]; 0 otherwise, and for a closed input); the
     /// metrics are against the filled surface.
     pub filled_holes: usize,
@@ -343,7 +347,8 @@ fn map_options(options: &RemeshOptions, faces: u64, shaped: bool) -> ParamOption
 pub const DROPPED_AREA_SHARE: f64 = 0.01;
 
 /// [`remesh_here`] on one piece without pinched vertices: mapped through a subdivided copy
-/// when it is coarser than the remesh ([`subdivision_levels`]).
+/// when it is coarser than the remesh ([`subdivision_levels`]), with its edges longer than
+/// the remesh's split ([`SPLIT_LONGER_THAN`]).
 fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progress, locate: bool) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
     let start = Instant::now();
     // Refused before the parameterization, which would be wasted.
@@ -352,25 +357,74 @@ fn remesh_manifold(mesh: &TriMesh, options: &RemeshOptions, progress: &dyn Progr
         return Err(Error::InvalidOption(format!("a cap mesh of about {asked} faces is more than capmesh remeshes (at most {MAX_GRID_FACES}); ask for fewer faces, rings or sectors")));
     }
     let shaped = options.optimize == Optimize::ShapeAndArea && matches!(options.grid, CapGrid::Uniform { .. });
-    let levels = if options.subdivide_coarse && shaped { subdivision_levels(mesh.n_faces(), asked as usize) } else { 0 };
-    if levels > 0 {
-        // The input's own errors name its own elements: checked before it is subdivided
-        // (subdividing drops faces with indices out of range), and the input as it is mapped
-        // again when the subdivided copy's preparation fails (an error there is cheap).
+    let refine = options.subdivide_coarse && shaped;
+    let levels = if refine { subdivision_levels(mesh.n_faces(), asked as usize) } else { 0 };
+    let subdivided = (levels > 0).then(|| crate::mesh::subdivide_midpoint(mesh, levels));
+    let base = subdivided.as_ref().unwrap_or(mesh);
+    let split = if refine { crate::mesh::split_long::split_long_edges(base, SPLIT_LONGER_THAN * remesh_edge_length(mesh, asked), MAX_SUBDIVIDED_FACES) } else { None };
+    if levels > 0 || split.is_some() {
+        // The input's own errors name its own elements: checked before its refined copy is
+        // mapped (subdividing drops faces with indices out of range), and the input as it is
+        // mapped again when the copy's preparation fails (an error there is cheap).
         crate::mesh::validate::checked_topology(mesh)?;
-        let fine = crate::mesh::subdivide_midpoint(mesh, levels);
-        return match remesh_work(mesh, &fine, levels, options, shaped, progress, locate, start) {
-            Err(Error::Mesh(_)) => remesh_work(mesh, mesh, 0, options, shaped, progress, locate, start),
+        let work = Refined { mesh: split.as_ref().map_or(base, |s| &s.mesh), levels, split: split.as_ref() };
+        return match remesh_work(mesh, &work, options, shaped, progress, locate, start) {
+            Err(Error::Mesh(_)) => remesh_work(mesh, &Refined::none(mesh), options, shaped, progress, locate, start),
             other => other,
         };
     }
-    remesh_work(mesh, mesh, 0, options, shaped, progress, locate, start)
+    remesh_work(mesh, &Refined::none(mesh), options, shaped, progress, locate, start)
 }
 
-/// [`remesh_manifold`] with the map made of `work`, which is `mesh` subdivided `levels`
-/// times: the metrics are against `mesh`, the surface points name its faces.
+/// Input edges longer than this many of the remesh's edges (the edge of an equilateral
+/// triangle of the input's mean area over the remesh's faces) are split for the map
+/// (`mesh::split_long`; docs/method.md section 25, "Long edges"): the transport then has
+/// sites along a decimated long bone's shaft, and the shape stage's linear models of the map
+/// hold across a remesh face. 3: at 1 and 2 the decimated bones came out the same from more
+/// vertices, and at 2 the fsaverage5 cortices at 20000 faces split edges for a lower smallest
+/// angle.
+pub const SPLIT_LONGER_THAN: f64 = 3.0;
+
+/// The edge of an equilateral triangle of `mesh`'s mean area over `faces` faces: the remesh's
+/// edge length. The input is not validated yet: faces with an index out of range and areas
+/// that are not finite are left out (the map's checks name them).
+fn remesh_edge_length(mesh: &TriMesh, faces: u64) -> f64 {
+    let corner = |v: u32| mesh.vertices.get(v as usize).copied();
+    let area: f64 = mesh
+        .faces
+        .iter()
+        .filter_map(|f| Some(crate::mesh::geometry::triangle_area(corner(f[0])?, corner(f[1])?, corner(f[2])?)))
+        .filter(|a| a.is_finite())
+        .sum();
+    (4.0 * area / (3f64.sqrt() * faces.max(1) as f64)).sqrt()
+}
+
+/// The mesh a remesh maps: the input midpoint-subdivided `levels` times, then its long edges
+/// split (`split`), or the input itself.
+struct Refined<'a> {
+    mesh: &'a TriMesh,
+    levels: usize,
+    split: Option<&'a crate::mesh::split_long::SplitMesh>,
+}
+
+impl<'a> Refined<'a> {
+    /// The input as it is.
+    fn none(mesh: &'a TriMesh) -> Self {
+        Self { mesh, levels: 0, split: None }
+    }
+
+    /// A point of the refined mesh (face, barycentric coordinates) as the input's.
+    fn input_point(&self, face: usize, barycentric: [f64; 3]) -> (usize, [f64; 3]) {
+        let (face, barycentric) = self.split.map_or((face, barycentric), |s| s.parent_point(face, barycentric));
+        crate::mesh::subdivide::parent_point(face, barycentric, self.levels)
+    }
+}
+
+/// [`remesh_manifold`] with the map made of `work`, a refinement of `mesh`: the metrics are
+/// against `mesh`, the surface points name its faces.
 #[allow(clippy::too_many_arguments)]
-fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOptions, shaped: bool, progress: &dyn Progress, locate: bool, start: Instant) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
+fn remesh_work(mesh: &TriMesh, refined: &Refined<'_>, options: &RemeshOptions, shaped: bool, progress: &dyn Progress, locate: bool, start: Instant) -> Result<(TriMesh, RemeshReport, Vec<SurfacePoint>), Error> {
+    let work = refined.mesh;
     let param = map_options(options, options.grid.approximate_faces(), shaped);
     // The input's own crossing faces (a metric) are counted while it is mapped: the map
     // leaves a core idle at times. Not an input the map will refuse (an index out of range,
@@ -412,7 +466,7 @@ fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOp
     let from_cap::FromCap { faces, planar: _, positions, has_plane: _, shape: shape_report, equalization, pullback_seconds, shape_seconds, equalize_seconds, fit, .. } = result;
     let out = TriMesh::new(positions, faces);
     for p in &mut points {
-        (p.face, p.barycentric) = crate::mesh::subdivide::parent_point(p.face, p.barycentric, levels);
+        (p.face, p.barycentric) = refined.input_point(p.face, p.barycentric);
     }
     let t_metrics = Instant::now();
     let quality = remesh_metrics_with(mesh, &out, input_crossing);
@@ -435,7 +489,8 @@ fn remesh_work(mesh: &TriMesh, work: &TriMesh, levels: usize, options: &RemeshOp
         dropped_components: 0,
         dropped_area_share: 0.0,
         filled_holes: 0,
-        subdivided: levels,
+        subdivided: refined.levels,
+        split_edges: refined.split.map_or(0, |s| s.splits),
     };
     Ok((out, report, points))
 }

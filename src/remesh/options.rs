@@ -105,9 +105,10 @@ pub struct RemeshOptions {
     /// What is done with an open surface's holes. Default [`Holes::Keep`].
     pub holes: Holes,
     /// Map a midpoint-subdivided copy of an input that has fewer faces than the uniform
-    /// remesh asks for ([`subdivision_levels`](super::subdivision_levels)): the same surface,
-    /// its map resolved finer than the remesh's faces. Default true (docs/method.md section
-    /// 25, "Coarse inputs").
+    /// remesh asks for ([`subdivision_levels`](super::subdivision_levels)), and split its
+    /// edges longer than the remesh's ([`SPLIT_LONGER_THAN`](super::SPLIT_LONGER_THAN)): the
+    /// same surface, its map resolved at the remesh's scale. Default true (docs/method.md
+    /// section 25, "Coarse inputs" and "Long edges").
     pub subdivide_coarse: bool,
     /// With the shape stage ([`Optimize::ShapeAndArea`] on the uniform grid), map a closed
     /// input of many more vertices than the remesh needs through a decimated copy sized to

@@ -95,9 +95,10 @@ pub struct RemeshArgs {
     /// missing, which a disk's map squeezes. Off by default
     #[arg(long)]
     pub fill_holes: bool,
-    /// Map the input as it is even when it has fewer faces than the remesh asks for (by
-    /// default such an input is midpoint-subdivided for its map, up to 3 times: the same
-    /// surface, better shaped faces where the map is anisotropic).
+    /// Map the input as it is even when it has fewer faces than the remesh asks for or edges
+    /// longer than the remesh's (by default such an input is midpoint-subdivided for its map,
+    /// up to 3 times, and its long edges split: the same surface, its map resolved at the
+    /// remesh's scale).
     #[arg(long)]
     pub no_subdivide: bool,
     /// Map a closed input of many more vertices than the remesh needs at the detail
@@ -153,6 +154,7 @@ struct Flat<'a> {
     dropped_area_share: f64,
     filled_holes: usize,
     subdivided: usize,
+    split_edges: usize,
     quality: capmesh::MapQuality,
     optimize: capmesh::remesh::Optimize,
     shape: capmesh::remesh::shape::ShapeReport,
@@ -270,6 +272,16 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
             4usize.pow(rep.subdivided as u32)
         );
     }
+    if rep.split_edges > 0 {
+        outln!(
+            "{}: mapped with {} edge{} longer than the remesh's split at {} midpoint{} (--no-subdivide maps it as it is)",
+            input.display(),
+            rep.split_edges,
+            if rep.split_edges == 1 { "" } else { "s" },
+            if rep.split_edges == 1 { "its" } else { "their" },
+            if rep.split_edges == 1 { "" } else { "s" }
+        );
+    }
     if rep.param.kind == capmesh::mesh::SurfaceKind::OpenDisk {
         if let Some(note) = crate::param_cmd::small_boundary_note(&input, &m) {
             outln!("{note}; or remesh with --fill-holes");
@@ -315,6 +327,7 @@ pub fn run(args: RemeshArgs) -> Result<(), Failure> {
                 dropped_area_share: rep.dropped_area_share,
                 filled_holes: rep.filled_holes,
                 subdivided: rep.subdivided,
+                split_edges: rep.split_edges,
                 quality: rep.param.quality,
                 optimize: rep.optimize,
                 shape: rep.shape,
