@@ -504,21 +504,6 @@ pub(crate) fn fan(polygon: &[u32], faces: &mut Vec<[u32; 3]>) {
     }
 }
 
-/// A vertex's three finite coordinates, the next tokens of line `at` of `path` (OBJ, OFF and
-/// ASCII STL): `missing(k)` says what to do when only `k` are there; a token that is not a
-/// number and a NaN or infinite coordinate are refused with the line named.
-pub(crate) fn read_point<'a>(toks: &mut impl Iterator<Item = &'a [u8]>, path: &Path, at: Location, missing: impl Fn(usize) -> String) -> Result<[f64; 3], ReadError> {
-    let mut p = [0.0; 3];
-    for (k, c) in p.iter_mut().enumerate() {
-        let tok = toks.next().ok_or_else(|| parse_error(path, at, missing(k)))?;
-        *c = text::parse_f64(tok).ok_or_else(|| parse_error(path, at, format!("'{}' is not a number; fix this vertex", text::show(tok))))?;
-    }
-    if !p.iter().all(|x| x.is_finite()) {
-        return Err(ReadError::NonFinite { path: path.to_path_buf(), at });
-    }
-    Ok(p)
-}
-
 /// A [`ReadError::Parse`].
 pub(crate) fn parse_error(path: &Path, at: Location, message: String) -> ReadError {
     ReadError::Parse {

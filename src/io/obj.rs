@@ -7,8 +7,8 @@ use std::io::Write;
 use std::path::Path;
 
 use super::error::{Location, ReadError};
-use super::text::{parse_i64, show, strip_comment, tokens, Lines};
-use super::{fan, parse_error, read_point};
+use super::text::{parse_i64, read_point, show, strip_comment, tokens, Lines};
+use super::{fan, parse_error};
 use super::VertexProperties;
 use crate::mesh::TriMesh;
 

@@ -7,8 +7,8 @@ use std::io::Write;
 use std::path::Path;
 
 use super::error::{Location, ReadError};
-use super::text::{is_blank, parse_i64, show, strip_comment, tokens, Lines};
-use super::{fan, parse_error, read_point};
+use super::text::{is_blank, parse_i64, read_point, show, strip_comment, tokens, Lines};
+use super::{fan, parse_error};
 use crate::mesh::TriMesh;
 
 /// Does this token look like an OFF keyword (`OFF`, `COFF`, `STCNOFF`, `4OFF`, `nOFF`, ...)?

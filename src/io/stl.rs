@@ -11,8 +11,8 @@ use std::io::Write;
 use std::path::Path;
 
 use super::error::{Location, ReadError};
-use super::text::{show, tokens, Lines};
-use super::{fan, parse_error, read_point};
+use super::text::{read_point, show, tokens, Lines};
+use super::{fan, parse_error};
 use crate::mesh::fasthash::FastMap;
 use crate::mesh::geometry::{cross, norm, sub};
 use crate::mesh::TriMesh;

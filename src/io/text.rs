@@ -1,6 +1,11 @@
 //! Hand-written tokenising for the text formats: lines (any of `\n`, `\r\n`, `\r`), ASCII
 //! whitespace separated tokens, `#` comments, and number parsing with `str::parse`.
 
+use std::path::Path;
+
+use super::error::{Location, ReadError};
+use super::parse_error;
+
 /// Lines of a byte buffer with their 1-based numbers; line terminators are removed.
 pub(crate) struct Lines<'a> {
     data: &'a [u8],
@@ -90,4 +95,19 @@ pub(crate) fn show(token: &[u8]) -> String {
         out.push_str("...");
     }
     out
+}
+
+/// A vertex's three finite coordinates, the next tokens of line `at` of `path` (OBJ, OFF and
+/// ASCII STL): `missing(k)` says what to do when only `k` are there; a token that is not a
+/// number and a NaN or infinite coordinate are refused with the line named.
+pub(crate) fn read_point<'a>(toks: &mut impl Iterator<Item = &'a [u8]>, path: &Path, at: Location, missing: impl Fn(usize) -> String) -> Result<[f64; 3], ReadError> {
+    let mut p = [0.0; 3];
+    for (k, c) in p.iter_mut().enumerate() {
+        let tok = toks.next().ok_or_else(|| parse_error(path, at, missing(k)))?;
+        *c = parse_f64(tok).ok_or_else(|| parse_error(path, at, format!("'{}' is not a number; fix this vertex", show(tok))))?;
+    }
+    if !p.iter().all(|x| x.is_finite()) {
+        return Err(ReadError::NonFinite { path: path.to_path_buf(), at });
+    }
+    Ok(p)
 }

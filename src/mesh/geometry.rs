@@ -48,6 +48,13 @@ pub fn norm(a: [f64; 3]) -> f64 {
     Vector3::from(a).norm()
 }
 
+/// The edge of an equilateral triangle of area `area / faces`: the mean edge length of
+/// `faces` well-shaped triangles covering `area`.
+#[inline]
+pub fn equilateral_edge(area: f64, faces: f64) -> f64 {
+    (4.0 * area / (3f64.sqrt() * faces)).sqrt()
+}
+
 /// Area of the triangle `abc`.
 #[inline]
 pub fn triangle_area(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {

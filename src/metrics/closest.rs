@@ -80,7 +80,7 @@ impl<'a> SurfaceDistance<'a> {
                 0.5 * norm(cross(sub(q[1], q[0]), sub(q[2], q[0])))
             })
             .sum();
-        let mean_edge = (4.0 * area / (3f64.sqrt() * mesh.n_faces().max(1) as f64)).sqrt();
+        let mean_edge = crate::mesh::geometry::equilateral_edge(area, mesh.n_faces().max(1) as f64);
         // At most 2^20 cells along an axis (keys pack 21 bits per axis).
         let cell = (2.0 * mean_edge).max(diag * 1e-6).max(1e-300);
         let n = [0, 1, 2].map(|k| ((ext[k] / cell).ceil() as i64).clamp(1, 1 << 20));

@@ -236,7 +236,7 @@ impl<'a> InputCrossings<'a> {
             return 0;
         }
         let area: f64 = face_areas(&r.positions, &r.faces).iter().sum();
-        let reach = 2.0 * (4.0 * area / (3f64.sqrt() * r.faces.len() as f64)).sqrt();
+        let reach = 2.0 * crate::mesh::geometry::equilateral_edge(area, r.faces.len() as f64);
         let remesh = TriMesh::new(r.positions.clone(), r.faces.clone());
         let distance = SurfaceDistance::new(crossing);
         self_intersecting_faces(&remesh)

@@ -396,7 +396,7 @@ fn remesh_edge_length(mesh: &TriMesh, faces: u64) -> f64 {
         .filter_map(|f| Some(crate::mesh::geometry::triangle_area(corner(f[0])?, corner(f[1])?, corner(f[2])?)))
         .filter(|a| a.is_finite())
         .sum();
-    (4.0 * area / (3f64.sqrt() * faces.max(1) as f64)).sqrt()
+    crate::mesh::geometry::equilateral_edge(area, faces.max(1) as f64)
 }
 
 /// The mesh a remesh maps: the input midpoint-subdivided `levels` times, then its long edges

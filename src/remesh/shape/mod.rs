@@ -56,7 +56,7 @@ use state::{Role, Shaping, SurfaceLift};
 
 /// The edge length of equilateral faces of `mesh`'s mean area.
 fn target_length(mesh: &Shaping) -> f64 {
-    (4.0 * polish::ln_mean_area(mesh).exp() / 3f64.sqrt()).sqrt()
+    crate::mesh::geometry::equilateral_edge(polish::ln_mean_area(mesh).exp(), 1.0)
 }
 
 /// A vertex's move: its new planar point, surface point, input face (`u32::MAX`: unknown)
