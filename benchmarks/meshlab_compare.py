@@ -496,6 +496,19 @@ def fmt(value, spec):
     return spec.format(value)
 
 
+def cpu_model():
+    """The processor's model name (from /proc/cpuinfo; "unknown CPU" elsewhere): timings move
+    by a factor of two between the machines CI runs on."""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return "unknown CPU"
+
+
 def write_report(rows, target, repeats, extra, total, suffix):
     try:
         import pymeshlab
@@ -506,7 +519,7 @@ def write_report(rows, target, repeats, extra, total, suffix):
     lines = [
         f"# Remeshing: capmesh and the remeshers users pick instead (about {target} faces)",
         "",
-        f"Machine: {os.cpu_count()} cores; {versions}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; whole run {total / 60:.1f} min.",
+        f"Machine: {os.cpu_count()} cores ({cpu_model()}); {versions}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; whole run {total / 60:.1f} min.",
         f"capmesh arguments: `--faces N{(' ' + ' '.join(extra)) if extra else ''}`.",
         f"seconds: median of {repeats} runs, the methods alternating within each round (every run's time in the JSON);",
         "library methods timed around the call alone, capmesh as the whole CLI run (process start, I/O, metrics included);",
