@@ -131,6 +131,40 @@ pub(crate) fn rank(r: &FromCap) -> (usize, usize, f64) {
 /// 25.2) and fell on two (bunny at 5000 22.4 -> 20.3, bird skull at 10000 18.5 -> 15.6).
 pub(crate) const MERGE_QUAD_FACES: f64 = 4.0;
 
+/// The d_face_rel above which a uniform remesh is polished again, longer, from the same start
+/// ([`polish_longer`]): the bar of issue 26 (0.035). The shared meshes' remeshes come to
+/// 0.015-0.023 and are not.
+pub(crate) const LONGER_POLISH_ABOVE: f64 = 0.035;
+
+/// The polish iterations and global area steps, at least, of a longer polish
+/// ([`polish_longer`]). On a long bone twenty times as long as wide the smooth part of the
+/// area error still falls by a few percent a global step after the default six, faces being
+/// carried along the shaft (docs/method.md section 18, "A longer polish"): at 5000 faces
+/// d_face_rel 0.0485 -> 0.0389 (0.0318 from the top end alone), quadric-decimated
+/// 0.0407 -> 0.0328.
+pub(crate) const LONGER_POLISH: (usize, usize) = (200, 20);
+
+/// The options of a longer polish of `r` ([`LONGER_POLISH`]), when `r` is a uniform remesh
+/// whose areas are spread beyond [`LONGER_POLISH_ABOVE`] and the options' own polish is
+/// shorter (none where the options make no polish, no global area steps where they make
+/// none).
+fn polish_longer(options: &RemeshOptions, r: &FromCap) -> Option<RemeshOptions> {
+    let shape = &options.shape;
+    let (iterations, steps) = LONGER_POLISH;
+    let steps = if shape.area_steps == 0 { 0 } else { shape.area_steps.max(steps) };
+    let longer = shape.with_polish_iterations(shape.polish_iterations.max(iterations)).with_area_steps(steps);
+    let uniform = !shape.sizing.by_covered();
+    let polishes_more = longer.polish_iterations > shape.polish_iterations || longer.area_steps > shape.area_steps;
+    (uniform && shape.polish_iterations > 0 && r.d_face_relative > LONGER_POLISH_ABOVE && polishes_more).then(|| RemeshOptions { shape: longer, ..options.clone() })
+}
+
+/// The order in which a remesh and its longer polish are preferred (lowest first): crossing
+/// faces of their own, slivers, areas spread beyond [`LONGER_POLISH_ABOVE`], then the higher
+/// mean smallest angle.
+fn area_rank(r: &FromCap) -> (usize, usize, bool, f64) {
+    (own_crossings(r), slivers(r), r.d_face_relative > LONGER_POLISH_ABOVE, -r.mean_min_angle_deg)
+}
+
 /// The d_face_rel above which a closed surface's uniform remesh also tries the other puncture
 /// end ([`super::remesh`]): the bar of issue 26 is 0.035 on most meshes. The two ends' maps
 /// often tie in the search and differ in the finished map's area spread near the puncture; a
@@ -174,11 +208,15 @@ pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &Place<'_>, su
     let input_crossings = ctx.input_crossings;
     let mut best: Option<FromCap> = None;
     let keep = |r: FromCap, best: &mut Option<FromCap>| {
-        if best.as_ref().map_or(true, |b| rank(&r) < rank(b)) {
+        let better = best.as_ref().map_or(true, |b| rank(&r) < rank(b));
+        if better {
             *best = Some(r);
         }
+        better
     };
     let mut starts = 0;
+    // The best remesh's start, for a longer polish (`polish_longer`).
+    let mut best_start: Option<TriMesh> = None;
     let t = Instant::now();
     let isotropic = sample::grid_is_isotropic(&cap, place);
     let mut sample_seconds = t.elapsed().as_secs_f64();
@@ -187,23 +225,37 @@ pub(crate) fn from_best_start(ctx: &Context, cap: TriMesh, place: &Place<'_>, su
             let t = Instant::now();
             let Some(start) = sample::isotropic_cap(&cap, surface_area, place, variant) else { break };
             sample_seconds += t.elapsed().as_secs_f64();
-            let mut r = pull_back_and_optimize(ctx, start, progress)?;
+            let mut r = pull_back_and_optimize(ctx, start.clone(), progress)?;
             starts += 1;
             r.shape.start = shape::Start::Sample;
             r.shape.uncross.at_input_crossings = input_crossings.near(&r);
-            keep(r, &mut best);
+            if keep(r, &mut best) {
+                best_start = Some(start);
+            }
             if best.as_ref().is_some_and(meets_bar) {
                 break;
             }
         }
     }
     if !best.as_ref().is_some_and(meets_bar) {
-        let mut r = pull_back_and_optimize(ctx, cap, progress)?;
+        let mut r = pull_back_and_optimize(ctx, cap.clone(), progress)?;
         starts += 1;
         r.shape.uncross.at_input_crossings = input_crossings.near(&r);
-        keep(r, &mut best);
+        if keep(r, &mut best) {
+            best_start = Some(cap);
+        }
     }
     let mut best = best.ok_or_else(|| Error::Internal("no remesh start was tried".into()))?;
+    if let (Some(start), Some(longer)) = (best_start, polish_longer(ctx.options, &best)) {
+        let ctx = Context { options: &longer, ..*ctx };
+        let mut r = pull_back_and_optimize(&ctx, start, progress)?;
+        r.shape.start = best.shape.start;
+        r.shape.longer_polish = true;
+        r.shape.uncross.at_input_crossings = input_crossings.near(&r);
+        if area_rank(&r) < area_rank(&best) {
+            best = r;
+        }
+    }
     best.pullback_seconds += sample_seconds;
     best.shape.starts = starts;
     best.shape.ends = 1;
@@ -400,6 +452,32 @@ mod tests {
             fixed: Vec::new(),
             fit: Default::default(),
         }
+    }
+
+    /// A uniform remesh whose areas are spread beyond the bar is polished again with at least
+    /// `LONGER_POLISH`'s iterations and global steps (no steps where the options make none);
+    /// a sized remesh, an even one, options without a polish and options that already polish
+    /// as long are not.
+    #[test]
+    fn a_longer_polish_is_asked_for_spread_uniform_areas_only() {
+        let options = RemeshOptions::default();
+        let (iterations, steps) = LONGER_POLISH;
+        let longer = polish_longer(&options, &made(48.5, 0.05)).expect("spread areas: a longer polish");
+        assert_eq!((longer.shape.polish_iterations, longer.shape.area_steps), (iterations, steps));
+        assert_eq!(longer.shape.relax_iterations, options.shape.relax_iterations, "only the polish changes");
+        assert!(polish_longer(&options, &made(48.5, LONGER_POLISH_ABOVE)).is_none(), "at the bar: as it is");
+        let sized = RemeshOptions { shape: options.shape.with_sizing(crate::remesh::sizing::Sizing::Surface), ..options.clone() };
+        assert!(polish_longer(&sized, &made(48.5, 0.2)).is_none(), "a sized remesh's spread is its purpose");
+        let no_steps = RemeshOptions { shape: options.shape.with_area_steps(0), ..options.clone() };
+        let longer = polish_longer(&no_steps, &made(48.5, 0.05)).expect("a longer polish without global steps");
+        assert_eq!((longer.shape.polish_iterations, longer.shape.area_steps), (iterations, 0));
+        let no_polish = RemeshOptions { shape: options.shape.with_relax_iterations(0).with_polish_iterations(0), ..options.clone() };
+        assert!(polish_longer(&no_polish, &made(35.0, 0.3)).is_none(), "no polish asked for: none made");
+        let long_already = RemeshOptions { shape: options.shape.with_polish_iterations(300).with_area_steps(30), ..options.clone() };
+        assert!(polish_longer(&long_already, &made(48.5, 0.05)).is_none(), "nothing longer to try");
+        // Of the two, fewer spread areas first, then the angles.
+        assert!(area_rank(&made(47.5, 0.03)) < area_rank(&made(48.5, 0.04)));
+        assert!(area_rank(&made(48.5, 0.04)) < area_rank(&made(47.5, 0.05)));
     }
 
     /// The other puncture end is tried for a uniform remesh below the angle bar or with its

@@ -27,6 +27,9 @@ pub struct ShapeReport {
     /// and the other end's map was remeshed too (`remesh::remesh`, the better kept), 1
     /// otherwise, 0 when the stage did not run.
     pub ends: usize,
+    /// Whether the kept remesh was polished again, longer, its areas spread beyond the bar
+    /// after the options' polish (`remesh::from_cap::polish_longer`).
+    pub longer_polish: bool,
     /// Iterations made.
     pub iterations: usize,
     /// Edge flips over all iterations.

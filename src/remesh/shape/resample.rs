@@ -248,16 +248,24 @@ pub(crate) fn collapse_edges(mesh: &mut Shaping, incidence: &Incidence, lift: &S
             continue;
         }
         let both_free = mesh.role[v as usize] == Role::Free;
-        let (q, x, hint) = if both_free {
+        let q = if both_free {
             let (pu, pv) = (mesh.plane[u as usize], mesh.plane[v as usize]);
-            let q = [0.5 * (pu[0] + pv[0]), 0.5 * (pu[1] + pv[1])];
-            let Some((x, h)) = lift.lift(q, mesh.hint[v as usize]) else { continue };
-            (q, x, h)
+            [0.5 * (pu[0] + pv[0]), 0.5 * (pu[1] + pv[1])]
         } else {
-            (mesh.plane[v as usize], mesh.position[v as usize], mesh.hint[v as usize])
+            mesh.plane[v as usize]
         };
-        // Every face around u or v that survives, with both at the merged point.
+        // Every face around u or v that survives, with both at the merged point: in the
+        // chart first, before the lift (most candidates that fail, fail there).
         let ring: Vec<u32> = incidence.of(u as usize).iter().chain(incidence.of(v as usize)).copied().filter(|&t| t != t1 && t != t2).collect();
+        if !merge_keeps_orientation(mesh, &ring, (u, v), q) {
+            continue;
+        }
+        let (x, hint) = if both_free {
+            let Some(lifted) = lift.lift(q, mesh.hint[v as usize]) else { continue };
+            lifted
+        } else {
+            (mesh.position[v as usize], mesh.hint[v as usize])
+        };
         if !merge_keeps_faces(mesh, &ring, &[t1, t2], (u, v), (q, x), max_len * local(u, v), Judge::EachFace) {
             continue;
         }
@@ -297,6 +305,18 @@ enum Judge {
     Ring,
 }
 
+/// Whether the faces `ring` around `u` and `v` all have planar points and keep their planar
+/// orientation with both at the planar point `q` (the first test of [`merge_keeps_faces`]).
+fn merge_keeps_orientation(mesh: &Shaping, ring: &[u32], (u, v): (u32, u32), q: [f64; 2]) -> bool {
+    ring.iter().all(|&t| {
+        let f = mesh.faces[t as usize];
+        f.iter().all(|&w| mesh.planar(w)) && {
+            let p = f.map(|w| if w == u || w == v { q } else { mesh.plane[w as usize] });
+            mesh.oriented(p[0], p[1], p[2], 0.0)
+        }
+    })
+}
+
 /// Whether the faces `ring` around `u` and `v`, with both at the planar point `q` and its
 /// lift `x`, all keep their planar orientation and their side on the surface (a normal turned
 /// by less than 45 degrees), with long edges and small angles as `judge` says; `removed`:
@@ -306,26 +326,39 @@ fn merge_keeps_faces(mesh: &Shaping, ring: &[u32], removed: &[u32], (u, v): (u32
         let old = mesh.faces[t as usize].map(|w| mesh.position[w as usize]);
         smallest_angle(old[0], old[1], old[2])
     };
-    let ring_before = ring.iter().chain(removed).map(|&t| angle_before(t)).fold(f64::INFINITY, f64::min);
+    // The ring's smallest angle before, for Judge::Ring only (atan2 is most of this check's
+    // time).
+    let ring_before = std::cell::OnceCell::new();
+    let ring_before = || *ring_before.get_or_init(|| ring.iter().chain(removed).map(|&t| angle_before(t)).fold(f64::INFINITY, f64::min));
     ring.iter().all(|&t| {
         let f = mesh.faces[t as usize];
         if !f.iter().all(|&w| mesh.planar(w)) {
             return false;
         }
         let p = f.map(|w| if w == u || w == v { q } else { mesh.plane[w as usize] });
+        if !mesh.oriented(p[0], p[1], p[2], 0.0) {
+            return false;
+        }
         let y = f.map(|w| if w == u || w == v { x } else { mesh.position[w as usize] });
         let old = f.map(|w| mesh.position[w as usize]);
         let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
         let n1 = cross(sub(y[1], y[0]), sub(y[2], y[0]));
+        let keeps_side = dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1);
+        if !keeps_side {
+            return false;
+        }
         // The face's corner among u and v, whose edges the merge moves.
         let end = if f.contains(&u) { u } else { v };
         let long = f.iter().any(|&w| {
             let was_long = norm(sub(mesh.position[w as usize], mesh.position[end as usize])) > max_len;
             w != u && w != v && norm(sub(mesh.position[w as usize], x)) > max_len && !(judge == Judge::Ring && was_long)
         });
-        let before = if judge == Judge::Ring { ring_before } else { angle_before(t) };
+        if long {
+            return false;
+        }
+        let before = if judge == Judge::Ring { ring_before() } else { angle_before(t) };
         let sliver = smallest_angle(y[0], y[1], y[2]) < before.min(COLLAPSE_MIN_ANGLE_DEG.to_radians());
-        mesh.oriented(p[0], p[1], p[2], 0.0) && dot(n0, n1) > MAX_TURN_COS * norm(n0) * norm(n1) && !long && !sliver
+        !sliver
     })
 }
 
