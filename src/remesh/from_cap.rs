@@ -145,9 +145,9 @@ pub(crate) const LONGER_POLISH_ABOVE: f64 = 0.035;
 pub(crate) const LONGER_POLISH: (usize, usize) = (200, 20);
 
 /// The options of a longer polish of `r` ([`LONGER_POLISH`]), when `r` is a uniform remesh
-/// whose areas are spread beyond [`LONGER_POLISH_ABOVE`] and the options' own polish is
-/// shorter (none where the options make no polish, no global area steps where they make
-/// none).
+/// whose areas are spread beyond [`LONGER_POLISH_ABOVE`] after a polish at least as long as
+/// the default's and shorter than [`LONGER_POLISH`] (options asking for a shorter polish keep
+/// it; no global area steps where they make none).
 fn polish_longer(options: &RemeshOptions, r: &FromCap) -> Option<RemeshOptions> {
     let shape = &options.shape;
     let (iterations, steps) = LONGER_POLISH;
@@ -155,7 +155,9 @@ fn polish_longer(options: &RemeshOptions, r: &FromCap) -> Option<RemeshOptions> 
     let longer = shape.with_polish_iterations(shape.polish_iterations.max(iterations)).with_area_steps(steps);
     let uniform = !shape.sizing.by_covered();
     let polishes_more = longer.polish_iterations > shape.polish_iterations || longer.area_steps > shape.area_steps;
-    (uniform && shape.polish_iterations > 0 && r.d_face_relative > LONGER_POLISH_ABOVE && polishes_more).then(|| RemeshOptions { shape: longer, ..options.clone() })
+    // A polish shorter than the default's was asked for (speed over areas): it stands.
+    let full = shape.polish_iterations >= shape::ShapeOptions::default().polish_iterations;
+    (uniform && full && r.d_face_relative > LONGER_POLISH_ABOVE && polishes_more).then(|| RemeshOptions { shape: longer, ..options.clone() })
 }
 
 /// The order in which a remesh and its longer polish are preferred (lowest first): crossing
@@ -456,8 +458,8 @@ mod tests {
 
     /// A uniform remesh whose areas are spread beyond the bar is polished again with at least
     /// `LONGER_POLISH`'s iterations and global steps (no steps where the options make none);
-    /// a sized remesh, an even one, options without a polish and options that already polish
-    /// as long are not.
+    /// a sized remesh, an even one, options asking for a polish shorter than the default's and
+    /// options that already polish as long are not.
     #[test]
     fn a_longer_polish_is_asked_for_spread_uniform_areas_only() {
         let options = RemeshOptions::default();
@@ -473,6 +475,8 @@ mod tests {
         assert_eq!((longer.shape.polish_iterations, longer.shape.area_steps), (iterations, 0));
         let no_polish = RemeshOptions { shape: options.shape.with_relax_iterations(0).with_polish_iterations(0), ..options.clone() };
         assert!(polish_longer(&no_polish, &made(35.0, 0.3)).is_none(), "no polish asked for: none made");
+        let short = RemeshOptions { shape: options.shape.with_relax_iterations(2).with_polish_iterations(3), ..options.clone() };
+        assert!(polish_longer(&short, &made(40.0, 0.2)).is_none(), "a short polish asked for: it stands");
         let long_already = RemeshOptions { shape: options.shape.with_polish_iterations(300).with_area_steps(30), ..options.clone() };
         assert!(polish_longer(&long_already, &made(48.5, 0.05)).is_none(), "nothing longer to try");
         // Of the two, fewer spread areas first, then the angles.
