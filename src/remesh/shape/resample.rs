@@ -307,14 +307,18 @@ enum Judge {
 
 /// Whether the faces `ring` around `u` and `v` all have planar points and keep their planar
 /// orientation with both at the planar point `q` (the first test of [`merge_keeps_faces`]).
-fn merge_keeps_orientation(mesh: &Shaping, ring: &[u32], (u, v): (u32, u32), q: [f64; 2]) -> bool {
-    ring.iter().all(|&t| {
-        let f = mesh.faces[t as usize];
-        f.iter().all(|&w| mesh.planar(w)) && {
-            let p = f.map(|w| if w == u || w == v { q } else { mesh.plane[w as usize] });
-            mesh.oriented(p[0], p[1], p[2], 0.0)
-        }
-    })
+fn merge_keeps_orientation(mesh: &Shaping, ring: &[u32], uv: (u32, u32), q: [f64; 2]) -> bool {
+    ring.iter().all(|&t| face_keeps_orientation(mesh, t, uv, q))
+}
+
+/// Whether face `t` has planar points and keeps its planar orientation with `u` and `v` at
+/// the planar point `q`.
+fn face_keeps_orientation(mesh: &Shaping, t: u32, (u, v): (u32, u32), q: [f64; 2]) -> bool {
+    let f = mesh.faces[t as usize];
+    f.iter().all(|&w| mesh.planar(w)) && {
+        let p = f.map(|w| if w == u || w == v { q } else { mesh.plane[w as usize] });
+        mesh.oriented(p[0], p[1], p[2], 0.0)
+    }
 }
 
 /// Whether the faces `ring` around `u` and `v`, with both at the planar point `q` and its
@@ -331,14 +335,10 @@ fn merge_keeps_faces(mesh: &Shaping, ring: &[u32], removed: &[u32], (u, v): (u32
     let ring_before = std::cell::OnceCell::new();
     let ring_before = || *ring_before.get_or_init(|| ring.iter().chain(removed).map(|&t| angle_before(t)).fold(f64::INFINITY, f64::min));
     ring.iter().all(|&t| {
+        if !face_keeps_orientation(mesh, t, (u, v), q) {
+            return false;
+        }
         let f = mesh.faces[t as usize];
-        if !f.iter().all(|&w| mesh.planar(w)) {
-            return false;
-        }
-        let p = f.map(|w| if w == u || w == v { q } else { mesh.plane[w as usize] });
-        if !mesh.oriented(p[0], p[1], p[2], 0.0) {
-            return false;
-        }
         let y = f.map(|w| if w == u || w == v { x } else { mesh.position[w as usize] });
         let old = f.map(|w| mesh.position[w as usize]);
         let n0 = cross(sub(old[1], old[0]), sub(old[2], old[0]));
